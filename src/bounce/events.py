@@ -1,0 +1,237 @@
+"""The event loop: flights, impacts, grazings and sticky phases (numba kernel).
+
+State between events, in the deviation variables of :mod:`bounce.flight`:
+(x, u = xdot, a = xi', eta = xi + gamma).  At an event x = 0 and
+
+* **impact** (eq. ``collision-rule``): psi' and xi' are exchanged, i.e.
+  u -> -x'(tau), a -> psi'(tau^-) = u + a - gamma tau, eta -> xi(tau) + gamma;
+* **grazing** (eq. ``swishes``): x = x' = 0 with x'' > 0: nothing is exchanged,
+  the flight goes on (recorded, lift-off restart);
+* **sticky_start** (eq. ``sticky-condition``): x = x' = x'' = 0; the lower mass
+  rests on the floor and y obeys eq. ``y-eq-sticky``.  In eta this is
+  eta'' + mu eta' + eta/2 = 0, i.e. the unit oscillator with damping mu/sqrt(2)
+  in the time s = t/sqrt(2).  The floor force (eq. ``force-on-the-floor``) is
+  F = G - 2 gamma with G = eta + 2 mu eta', which solves the same equation;
+* **detach** (eq. ``cond_di_distacco``): the first F = 0 with F' > 0, i.e. the
+  first return of G to 2 gamma.  The detach search is the flight root finder on
+  the gap 2 gamma - G (g = 0 in eq. (F)); if the amplitude envelope
+  sqrt(G^2 + G_s^2), which never increases, falls below 2 gamma, G can never
+  return and the sticky phase is proved infinite.
+
+Zero-speed contacts.  Rounding leaves x uncertain by ``xn = 4 eps scale``; near a
+tangency this hides a time window delta, and with it a speed.  A contact whose
+speed |x'| is below what that window can resolve, 4 max(|x''| delta2, |x'''|
+delta3^2 / 2) with delta2 = sqrt(2 xn/|x''|), delta3 = (6 xn/|x'''|)^(1/3), is
+treated as tangential (approximation at the rounding level; generic impacts are
+many orders of magnitude faster).  It is a sticky onset if also
+x'' <= 4 |x'''| delta3, and a grazing otherwise.
+
+Time is accumulated with Neumaier's compensated sum so that t stays correctly
+rounded after 1e6+ short flights; the flight durations are stored exactly.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .flight import (
+    EPS,
+    FAILED,
+    FOUND,
+    HORIZON,
+    NEVER,
+    first_contact,
+    liftoff_time,
+    oscillator_derivatives,
+)
+from .oscillator import P_MU
+
+# event kinds (netCDF flag_values)
+IMPACT, GRAZING, STICKY_START, DETACH = 0, 1, 2, 3
+KIND_NAMES = ("impact", "grazing", "sticky_start", "detach")
+
+# why the loop ended
+STOP_EVENTS, STOP_TIME, STOP_ENERGY, STOP_STICKY_FOREVER, STOP_FAILED = range(5)
+STOP_NAMES = ("max_events", "t_max", "energy", "sticky_forever", "root_finder_failed")
+
+SQRT2 = math.sqrt(2.0)
+
+
+@njit(cache=True)
+def energy_excess(x, u, a, eta, gamma):
+    """E - E_m = (xi'^2 + psi'^2 + eta^2)/2 + gamma x  (eqs. tot-mech-energy, Emin)."""
+    return 0.5 * (a * a + (u + a) * (u + a) + eta * eta) + gamma * x
+
+
+@njit(cache=True)
+def floor_force(a, eta, gamma, mu):
+    """F and F' (eq. force-on-the-floor) for a state at rest on the floor."""
+    G = eta + 2.0 * mu * a
+    # eta'' = -mu eta' - eta/2  =>  G' = a + 2 mu (-mu a - eta/2)
+    Gp = a * (1.0 - 2.0 * mu * mu) - mu * eta
+    return G - 2.0 * gamma, Gp
+
+
+@njit(cache=True)
+def _kahan_add(hi, lo, dt):
+    """Neumaier compensated addition (hi, lo) + dt."""
+    s = hi + dt
+    if abs(hi) >= abs(dt):
+        lo += (hi - s) + dt
+    else:
+        lo += (dt - s) + hi
+    return s, lo
+
+
+@njit(cache=True)
+def _record(i, t, tau, kind, u, a, eta, gamma, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind):
+    out_t[i] = t
+    out_tau[i] = tau
+    out_u[i] = u
+    out_a[i] = a
+    out_eta[i] = eta
+    out_e[i] = energy_excess(0.0, u, a, eta, gamma)
+    out_kind[i] = kind
+
+
+@njit(cache=True)
+def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
+    """Duration of a sticky phase starting from (a, eta) and the state at detachment.
+
+    Returns ``(status, duration, a_d, eta_d)``; status FOUND (detach), HORIZON
+    (still sticky at t_limit) or NEVER (infinite sticky phase, proved).
+    """
+    mu = sparams[P_MU] * SQRT2
+    # scaled time s = t / sqrt(2): eta_s = sqrt(2) eta'
+    es0 = SQRT2 * a
+    G0 = eta + 2.0 * mu * a
+    Gs0 = es0 * (1.0 - 2.0 * mu * mu) - SQRT2 * mu * eta
+    x0 = max(0.0, 2.0 * gamma - G0)  # F(0) = 0 up to rounding: clamp at the floor
+    if x0 == 0.0 and Gs0 >= 0.0:
+        return FOUND, 0.0, a, eta
+    status, s, _, _, omc, _, _, _, S, Sd = first_contact(
+        0.0, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
+    )
+    if status != FOUND:
+        return status, s * SQRT2, a, eta
+    eta_d = eta - eta * omc + es0 * S
+    es_d = -eta * S + es0 * Sd
+    return FOUND, s * SQRT2, es_d / SQRT2, eta_d
+
+
+@njit(cache=True)
+def _at_rest_is_sticky(a, eta, gamma, mu):
+    """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?"""
+    F, Fp = floor_force(a, eta, gamma, mu)
+    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
+    if F > noise:
+        return False
+    if F < -noise:
+        return True
+    return Fp <= 0.0
+
+
+@njit(cache=True)
+def _is_tangential(v, acc, jerk, xn):
+    """Is the contact speed |v| below what the rounding level xn of x resolves?
+
+    Near a tangency x ~ acc s^2/2 (or |jerk| s^3/6) stays hidden under xn for a
+    window delta2 = sqrt(2 xn/|acc|) (delta3 = (6 xn/|jerk|)^(1/3)), in which the
+    speed reaches |acc| delta2 (|jerk| delta3^2/2).  Contacts slower than four
+    times either are tangential.  Compared in powers: no root on the hot path.
+    """
+    if v >= 0.0:
+        return True
+    v2 = v * v
+    return v2 <= 32.0 * abs(acc) * xn or v2 * abs(v) <= 288.0 * abs(jerk) * xn * xn
+
+
+@njit(cache=True)
+def _is_sticky_onset(acc, jerk, xn):
+    """Tangential contact with x'' = 0 within the window delta3 and x''' < 0."""
+    return jerk < 0.0 and acc * acc * acc <= 384.0 * jerk * jerk * xn
+
+
+@njit(cache=True)
+def run_events(
+    x0, u, a, eta, gamma, params, coefs, sparams, scoefs,
+    max_events, t_max, e_stop,
+    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind,
+):
+    """Advance the state (x0, u, a, eta) from t = 0 and record every event.
+
+    Stops after ``max_events`` records, at ``t_max``, once E - E_m < ``e_stop``, or
+    when a sticky phase is proved infinite.  Output arrays (length >= max_events)
+    receive per event: t, the duration of the phase ending at it, the state just
+    after it (u = xdot, a = xi', eta = xi + gamma), E - E_m and the kind.
+    Returns ``(n_events, stop_reason, t_end)``.
+    """
+    mu = params[P_MU]
+    t_hi = 0.0
+    t_lo = 0.0
+    n = 0
+    sticky = False
+    t_start = 0.0
+    stop = STOP_EVENTS
+    if x0 == 0.0 and u == 0.0:
+        if _at_rest_is_sticky(a, eta, gamma, mu):
+            sticky = True
+            _record(0, 0.0, 0.0, STICKY_START, u, a, eta, gamma,
+                    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+            n = 1
+        else:
+            t_start = liftoff_time(u, a, eta, gamma, params)
+    while n < max_events:
+        t_limit = t_max - (t_hi + t_lo)
+        if sticky:
+            status, tau, a, eta = _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs)
+            if status != FOUND:
+                stop = STOP_STICKY_FOREVER if status == NEVER else (
+                    STOP_TIME if status == HORIZON else STOP_FAILED)
+                break
+            kind = DETACH
+            x0 = 0.0
+            u = 0.0
+            sticky = False
+            t_start = liftoff_time(u, a, eta, gamma, params)
+        else:
+            status, tau, v, scale, omc, tms, omsd, c, S, Sd = first_contact(
+                t_start, t_limit, x0, u, a, eta, gamma, params, coefs
+            )
+            if status != FOUND:
+                stop = STOP_TIME if status == HORIZON else STOP_FAILED
+                break
+            x0 = 0.0
+            t_start = 0.0
+            xid_t = (gamma - eta) * S + a * Sd  # xi'(tau)
+            eta_t = eta * c + a * S + gamma * omc  # xi(tau) + gamma
+            # x'' = -gamma - xi'' and x''' = -xi''' just before the contact
+            xidd = -(eta_t - gamma) - 2.0 * mu * xid_t
+            acc = -gamma - xidd
+            jerk = xid_t + 2.0 * mu * xidd
+            xn = 4.0 * EPS * scale + 1e-300
+            if not _is_tangential(v, acc, jerk, xn):
+                kind = IMPACT  # eq. collision-rule: psi' <-> xi'
+                a = u + a - gamma * tau
+                u = -v
+                eta = eta_t
+            else:  # nothing exchanged: psi' = xi' at a tangential contact
+                a = xid_t
+                eta = eta_t
+                u = 0.0
+                if _is_sticky_onset(acc, jerk, xn):
+                    kind = STICKY_START
+                    sticky = True
+                else:
+                    kind = GRAZING
+                    t_start = liftoff_time(u, a, eta, gamma, params)
+        t_hi, t_lo = _kahan_add(t_hi, t_lo, tau)
+        _record(n, t_hi + t_lo, tau, kind, u, a, eta, gamma,
+                out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        n += 1
+        if out_e[n - 1] < e_stop:
+            stop = STOP_ENERGY
+            break
+    return n, stop, t_hi + t_lo

@@ -1,0 +1,180 @@
+"""Free flight in closed form and the first-contact root finder.
+
+Variables (all dimensionless, paper section 2).  A flight starts at a state
+
+    x0 >= 0   height of the lower mass,
+    u         its velocity  xdot,
+    a         xi' = (ydot - xdot)/2, the spring's velocity,
+    eta       xi + gamma = (y - y_eq - x)/2, the spring's deviation from its
+              equilibrium value -gamma (y_eq = 1 - 2 gamma),
+
+and, with psi'' = -g and xi'' + 2 mu xi' + xi = 0 (eq. ``eq-motion-psi-xi``), the
+height of the lower mass is, *as a displacement from the start state*,
+
+    x(t) = x0 + u t + a (t - S) - g (t^2/2 + 1 - c) + eta (1 - c)          (F)
+
+where c, S are the oscillator's fundamental solutions (:mod:`bounce.oscillator`).
+Each term is a state variable times a function evaluated without cancellation,
+so x(t) carries an absolute error of a few ulps of ``scale`` (the sum of the
+terms' magnitudes) even when x ~ 1e-17 late in the asymptotic regime, where
+forming x = psi - xi from O(gamma) values would keep no digit at all.
+With g = gamma this is the flight; with g = 0 and u = -a the same formula is the
+gap 2 gamma - G of the sticky phase (see :mod:`bounce.events`).
+
+First root without skipping (:func:`first_contact`)
+----------------------------------------------------
+x'' = -g - xi''.  xi'' solves the same damped equation as xi, and for any
+solution z of z'' + 2 mu z' + z = 0 the quantity z^2 + z'^2 never increases
+(d/dt = -4 mu z'^2 <= 0).  Hence for every t >= 0 of the flight
+
+    |xi''(t)| <= M2 = min( sqrt(xi''(0)^2 + xi'(0)^2), sqrt(xi''(0)^2 + xi'''(0)^2) )
+
+and x'' >= -B with B = g + M2.  From any point t_k with x_k = x(t_k) > 0 and
+v_k = x'(t_k), Taylor's theorem gives x(t_k + s) >= x_k + v_k s - B s^2/2, whose
+smallest positive root s_k is therefore a step that cannot cross the floor.
+Marching t_{k+1} = t_k + s_k never passes the first root; near a transversal
+root the bound is a parabola tangent to x, so the march converges quadratically
+(two or three evaluations per impact in the asymptotic regime).  It stops when
+x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
+polishes the root.  The only roots that can be missed are dips of x below the
+floor shallower than its rounding error, which no float64 computation can see.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .oscillator import P_MU, fundamental
+
+EPS = 2.220446049250313e-16
+#: relative safety margin on the curvature bound (covers rounding of B itself).
+B_MARGIN = 1.0 + 1e-12
+#: cap on safe steps per flight (a crawl towards a tangency needs ~1e3).
+MAX_STEPS = 200_000
+
+# statuses of first_contact
+FOUND, HORIZON, NEVER, FAILED = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def oscillator_derivatives(u, a, eta, g, mu):
+    """xi', xi'', xi''', xi'''' at the start of a flight (xi(0) = eta - g)."""
+    xi0 = eta - g
+    z1 = a
+    z2 = -xi0 - 2.0 * mu * z1
+    z3 = -z1 - 2.0 * mu * z2
+    z4 = -z2 - 2.0 * mu * z3
+    return z1, z2, z3, z4
+
+
+@njit(cache=True)
+def derivative_bound(zkm1, zk, zkp1):
+    """Bound on |z^(k)(t)| for all t >= 0 from the non-increasing energies."""
+    return math.sqrt(zk * zk + min(zkm1 * zkm1, zkp1 * zkp1))
+
+
+@njit(cache=True)
+def gap(t, x0, u, a, eta, g, params, coefs):
+    """x(t), x'(t), the rounding scale of x, and the oscillator parts at t (eq. (F))."""
+    omc, tms, omsd, c, S, Sd = fundamental(t, params, coefs)
+    x = x0 + u * t + a * tms - g * (0.5 * t * t + omc) + eta * omc
+    v = u + a * omsd - g * (t + S) + eta * S
+    scale = x0 + abs(u) * t + abs(a * tms) + g * (0.5 * t * t + abs(omc)) + abs(eta * omc)
+    return x, v, scale, omc, tms, omsd, c, S, Sd
+
+
+@njit(cache=True)
+def safe_step(x, v, B):
+    """Smallest positive root of x + v s - B s^2 / 2 (inf if there is none)."""
+    if B > 0.0:
+        disc = math.sqrt(v * v + 2.0 * B * x)
+        if v < 0.0:
+            return 2.0 * x / (disc - v)
+        return (v + disc) / B
+    if v < 0.0:
+        return x / (-v)
+    return math.inf
+
+
+@njit(cache=True)
+def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
+    """First t in (t_start, t_limit] with x(t) = 0, for the flight of eq. (F).
+
+    Requires x > 0 on (0, t_start] (t_start = 0 needs x0 > 0 or u > 0).
+    Returns ``(status, t, v, scale, omc, tms, omsd, c, S, Sd)``: x'(t), the
+    rounding scale of x and the oscillator parts at t.  Status FOUND: the
+    polished root (the parts are carried to it by a first-order update, exact to
+    O(dt^2) with dt at the rounding level); HORIZON: no contact before t_limit;
+    NEVER: contact proved impossible (bounded mode g = 0, u + a = 0: the
+    oscillator's amplitude envelope dropped below the level xi must return to);
+    FAILED: MAX_STEPS exhausted.
+    """
+    mu = params[P_MU]
+    z1, z2, z3, z4 = oscillator_derivatives(u, a, eta, g, mu)
+    B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
+    bounded = g == 0.0 and u + a == 0.0
+    level = x0 + eta  # bounded mode: contact needs xi(t) = x0 + xi(0)
+    t = t_start
+    if t == 0.0:
+        x, v, scale = x0, u, x0
+        omc, tms, omsd, c, S, Sd = 0.0, 0.0, 0.0, 1.0, 0.0, 1.0
+    else:
+        x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+    for _ in range(MAX_STEPS):
+        s = safe_step(x, v, B)
+        if t + s > t_limit:
+            return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd
+        t_new = t + s
+        if t_new == t:
+            break
+        t = t_new
+        x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        if x <= 4.0 * EPS * scale:
+            break
+        if bounded:
+            # xi(t) = level - x and xi'(t) = -v
+            xi_t = level - x
+            if math.sqrt(xi_t * xi_t + v * v) < level * (1.0 - 1e-12):
+                return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd
+    else:
+        return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd
+    if v < 0.0:
+        # Newton polish; x is at the rounding level, so dt is too
+        dt = -x / v
+        t += dt
+        Sdd = -2.0 * mu * Sd - S  # S'' from the oscillator equation
+        omc += S * dt  # (1 - c)' = S
+        tms += (1.0 - Sd) * dt
+        omsd -= Sdd * dt
+        c -= S * dt
+        S += Sd * dt
+        Sd += Sdd * dt
+        v += (-g - (eta - g) * Sd - a * Sdd) * dt  # x'' = -g - xi''
+    return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd
+
+
+@njit(cache=True)
+def liftoff_time(u, a, eta, g, params):
+    """A time s > 0 with x > 0 on (0, s] for a flight starting on the floor at rest.
+
+    With x0 = u = 0, x(s) >= s^2 (F/2 + F' s/6 - M4 s^2/24) where F = x''(0),
+    F' = x'''(0) and M4 bounds |x''''| = |xi''''| (energy argument).  Returns half
+    the positive root of the bracket, or 0 if neither F > 0 nor (F = 0, F' > 0).
+    """
+    mu = params[P_MU]
+    z1, z2, z3, z4 = oscillator_derivatives(u, a, eta, g, mu)
+    F = -g - z2
+    Fp = -z3
+    z5 = -z3 - 2.0 * mu * z4
+    M4 = derivative_bound(z3, z4, z5) * B_MARGIN
+    F = max(F, 0.0)  # a rest state on the sticky boundary: F = 0 up to rounding
+    if F == 0.0 and Fp <= 0.0:
+        return 0.0
+    if M4 == 0.0:
+        return 1.0
+    q = M4 / 24.0
+    p = Fp / 6.0
+    root = (p + math.sqrt(p * p + 4.0 * q * 0.5 * F)) / (2.0 * q)
+    return 0.5 * root

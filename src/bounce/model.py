@@ -1,0 +1,105 @@
+"""The two-mass ball: parameters, states and their validation (paper, section 2).
+
+Dimensionless units: lengths in L (rest length of the spring), times in
+sqrt(m / 2k).  gamma = g m / (2 L k) and mu = nu / sqrt(2 k m) (eq.
+``dimensionless-eq-motion``).  A state is (x, xdot, y, ydot): heights and
+velocities of the lower and upper mass.  The numerical core works in the
+deviation variables of :mod:`bounce.flight`:
+
+    u = xdot,  a = xi' = (ydot - xdot)/2,  eta = xi + gamma = (y - y_eq - x)/2,
+
+with psi = (y + x - 1)/2, xi = (y - x - 1)/2 (eq. ``xi-psi``) and the static
+equilibrium y_eq = 1 - 2 gamma, E_m = -gamma^2/2 (eqs. ``equilibrium``, ``Emin``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+class InputError(ValueError):
+    """A parameter outside its allowed range; the message names both."""
+
+
+def _finite(name: str, value: float) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a finite number, got {value!r}") from None
+    if not math.isfinite(value):
+        raise InputError(f"{name} must be a finite number, got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """gamma > 0 (gravity against spring stiffness) and mu >= 0 (damping)."""
+
+    gamma: float
+    mu: float
+
+    def __post_init__(self) -> None:
+        gamma = _finite("gamma", self.gamma)
+        mu = _finite("mu", self.mu)
+        if not gamma > 0.0:
+            raise InputError(f"gamma must be > 0 (allowed range: (0, inf)), got {gamma!r}")
+        if not mu >= 0.0:
+            raise InputError(f"mu must be >= 0 (allowed range: [0, inf)), got {mu!r}")
+        object.__setattr__(self, "gamma", gamma)
+        object.__setattr__(self, "mu", mu)
+
+    @property
+    def y_eq(self) -> float:
+        """Equilibrium height of the upper mass, 1 - 2 gamma."""
+        return 1.0 - 2.0 * self.gamma
+
+    @property
+    def energy_min(self) -> float:
+        """E_m = -gamma^2 / 2, the energy of the static equilibrium."""
+        return -0.5 * self.gamma**2
+
+
+@dataclass(frozen=True)
+class State:
+    """Heights and velocities (x, xdot, y, ydot) of the lower and upper mass."""
+
+    x: float
+    xdot: float
+    y: float
+    ydot: float
+
+    def __post_init__(self) -> None:
+        for name, suffix in (("x", "x0"), ("xdot", "xdot0"), ("y", "y0"), ("ydot", "ydot0")):
+            object.__setattr__(self, name, _finite(suffix, getattr(self, name)))
+        if self.x < 0.0:
+            raise InputError(f"x0 must be >= 0 (the lower mass cannot start below the floor), got {self.x!r}")
+        if self.x == 0.0 and self.xdot < 0.0:
+            raise InputError(
+                f"xdot0 must be >= 0 when x0 = 0 (a state on the floor moving down is below it an instant later), "
+                f"got {self.xdot!r}"
+            )
+
+    @classmethod
+    def from_psi_xi(cls, psi: float, psidot: float, xi: float, xidot: float) -> "State":
+        """State from the centre-of-mass and spring variables of eq. ``xi-psi``."""
+        return cls(x=psi - xi, xdot=psidot - xidot, y=psi + xi + 1.0, ydot=psidot + xidot)
+
+    @classmethod
+    def sticky_ic(cls, params: Parameters, eps: float, ydot0: float = -0.1) -> "State":
+        """Initial condition eq. ``sticky-ic``: X0 = 0, Xdot0 = eps, Y0 = 1 + 2 gamma - 2 mu Ydot0."""
+        return cls(x=0.0, xdot=eps, y=1.0 + 2.0 * params.gamma - 2.0 * params.mu * ydot0, ydot=ydot0)
+
+    def deviations(self, params: Parameters) -> tuple[float, float, float, float]:
+        """(x, u, a, eta) of the numerical core (module docstring)."""
+        a = 0.5 * (self.ydot - self.xdot)
+        eta = 0.5 * ((self.y - params.y_eq) - self.x)
+        return self.x, self.xdot, a, eta
+
+    def energy(self, params: Parameters) -> float:
+        """Total mechanical energy, eq. ``tot-mech-energy``."""
+        psi = 0.5 * (self.y + self.x - 1.0)
+        xi = 0.5 * (self.y - self.x - 1.0)
+        psidot = 0.5 * (self.ydot + self.xdot)
+        xidot = 0.5 * (self.ydot - self.xdot)
+        return 0.5 * (xidot**2 + xi**2 + psidot**2) + params.gamma * psi

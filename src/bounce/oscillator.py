@@ -1,0 +1,174 @@
+"""Fundamental solutions of the unit damped oscillator, without cancellation.
+
+The internal mode of the ball obeys (paper, eq. ``eq-motion-psi-xi``)
+
+    xi'' + 2 mu xi' + xi = 0,        mu >= 0,
+
+so every free flight is a combination of the two fundamental solutions
+
+    c(t):  c(0) = 1, c'(0) = 0        S(t):  S(0) = 0, S'(0) = 1,
+
+with ``c' = -S`` and ``c = S' + 2 mu S``.  Late in the asymptotic regime the
+flights are short (tau ~ 3/(mu n)), and what the dynamics needs is not c, S, S'
+themselves but their *small parts*
+
+    omc = 1 - c(t),   tms = t - S(t),   omsd = 1 - S'(t),
+
+which are O(t^2), O(t^2) and O(t).  Forming them as differences of O(1) numbers
+would lose all digits for t ~ 1e-6, so for ``q = rho t <= SERIES_Q`` (rho the
+largest characteristic rate, ``max(1, mu + sqrt(mu^2 - 1))``) they are summed
+directly from their Taylor series, whose coefficients come from the recurrence
+
+    (k+2)(k+1) z_{k+2} = -2 mu (k+1) z_{k+1} - z_k.
+
+Every coefficient obeys ``|z_k| <= (3k+1) rho^k / k!`` (the roots r1, r2 of
+r^2 + 2 mu r + 1 have |r| <= rho), which gives a rigorous truncation rule: stop
+once the tail bound is below 2^-55 of every sum; the degree this needs is
+tabulated per oscillator against q, so the hot loop is a branch-free Horner sum.  For q > SERIES_Q the
+closed forms are used (under-, critically and over-damped) and the small parts
+are formed by subtraction, which then loses at most a factor ~ e^q / q^2 < 4.
+
+The over-damped closed form is written with the slow and fast rates
+``lam_slow = 1/(mu + kappa)`` and ``lam_fast = mu + kappa`` (kappa = sqrt(mu^2-1)),
+so nothing overflows for long flights and everything is continuous across mu = 1.
+
+An oscillator is a pair of arrays ``(params, coefs)`` made once per damping by
+:func:`make_oscillator`; the numba kernels take the two arrays.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: number of Taylor coefficients kept (enough for q <= SERIES_Q to 2^-54).
+N_COEFS = 48
+#: largest q = rho * t at which the Taylor series is used.
+SERIES_Q = 2.0
+
+# layout of the ``params`` array
+P_MU, P_RHO, P_BRANCH, P_FREQ, P_LSLOW, P_LFAST = range(6)
+UNDER, CRITICAL, OVER = 0.0, 1.0, 2.0
+
+
+def make_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
+    """Coefficients of xi'' + 2 mu xi' + xi = 0 for the kernels of this module.
+
+    Returns ``(params, coefs)``: ``params`` holds mu, rho, the branch (0 under-,
+    1 critically, 2 over-damped), omega = sqrt(1-mu^2) or kappa = sqrt(mu^2-1),
+    and the over-damped rates; ``coefs[j, k]`` multiplies t^k in the Taylor series
+    of omc (j = 0), tms (j = 1) and omsd (j = 2); ``coefs[3, K]`` is the largest
+    q = rho t for which truncating after t^K meets the tail rule (see
+    :func:`_degree_thresholds`).
+    """
+    mu = float(mu)
+    if not (mu >= 0.0 and math.isfinite(mu)):
+        raise ValueError(f"mu must be a finite number >= 0, got {mu!r}")
+    if mu < 1.0:
+        branch, freq = UNDER, math.sqrt((1.0 - mu) * (1.0 + mu))
+        rho, lslow, lfast = 1.0, mu, mu
+    elif mu == 1.0:
+        branch, freq = CRITICAL, 0.0
+        rho, lslow, lfast = 1.0, 1.0, 1.0
+    else:
+        branch, freq = OVER, math.sqrt((mu - 1.0) * (mu + 1.0))
+        lfast = mu + freq
+        lslow = 1.0 / lfast  # = mu - kappa, without cancellation
+        rho = lfast
+    params = np.array([mu, rho, branch, freq, lslow, lfast], dtype=np.float64)
+
+    def series(z0: float, z1: float) -> np.ndarray:
+        z = np.zeros(N_COEFS + 1)
+        z[0], z[1] = z0, z1
+        for k in range(N_COEFS - 1):
+            z[k + 2] = (-2.0 * mu * (k + 1) * z[k + 1] - z[k]) / ((k + 2) * (k + 1))
+        return z
+
+    c, s = series(1.0, 0.0), series(0.0, 1.0)
+    coefs = np.zeros((4, N_COEFS))
+    coefs[0, 2:] = -c[2:N_COEFS]  # 1 - c
+    coefs[1, 2:] = -s[2:N_COEFS]  # t - S
+    k = np.arange(1, N_COEFS)
+    coefs[2, 1:] = -(k + 1) * s[2 : N_COEFS + 1]  # 1 - S'  (S' = sum (k+1) s_{k+1} t^k)
+    coefs[3] = _degree_thresholds(rho, coefs[:3])
+    return params, coefs
+
+
+def _degree_thresholds(rho: float, coefs: np.ndarray) -> np.ndarray:
+    """For each degree K, the largest q = rho t up to which the series may stop at t^K.
+
+    Rule: the tail after t^K, bounded by 2 (3K+4) q^(K+1) / (K+1)! (valid for
+    K + 1 >= 3 q since |z_k| <= (3k+1) rho^k / k!), must stay below 2^-55 of the
+    smallest of the three sums at every q' <= q of a fine logarithmic grid (the
+    sums are positive and smooth on (0, SERIES_Q], and they are evaluated here
+    with all N_COEFS terms).
+    """
+    q = np.geomspace(1e-14, SERIES_Q, 2000)
+    t = q / rho
+    powers = t[:, None] ** np.arange(N_COEFS)[None, :]
+    smallest = np.min(np.abs(powers @ coefs.T), axis=1)
+    thresholds = np.zeros(N_COEFS)
+    log_fact = np.cumsum(np.log(np.arange(1, N_COEFS + 1)))  # log((k)!) at index k-1
+    for K in range(2, N_COEFS - 1):
+        with np.errstate(divide="ignore"):
+            log_tail = np.log(2.0 * (3 * K + 4)) + (K + 1) * np.log(q) - log_fact[K]
+        ok = (K + 1 >= 3.0 * q) & (log_tail <= np.log(2.0**-55 * smallest))
+        bad = np.flatnonzero(~ok)
+        thresholds[K] = q[-1] if bad.size == 0 else (q[bad[0] - 1] if bad[0] > 0 else 0.0)
+    thresholds[N_COEFS - 1] = SERIES_Q
+    return thresholds
+
+
+@njit(cache=True)
+def _series_parts(t, rho, coefs):
+    """Taylor sums of (1-c, t-S, 1-S') at t, truncated at the degree the tail rule allows."""
+    q = rho * t
+    K = 2
+    while q > coefs[3, K]:
+        K += 1
+    omc = 0.0
+    tms = 0.0
+    omsd = 0.0
+    for k in range(K, 0, -1):
+        omc = omc * t + coefs[0, k]
+        tms = tms * t + coefs[1, k]
+        omsd = omsd * t + coefs[2, k]
+    return omc * t, tms * t, omsd * t
+
+
+@njit(cache=True)
+def _closed_form(t, params):
+    """c, S, S' from the closed forms (under-, critically, over-damped)."""
+    mu = params[P_MU]
+    branch = params[P_BRANCH]
+    if branch == UNDER:
+        w = params[P_FREQ]
+        e = math.exp(-mu * t)
+        sn = math.sin(w * t) / w
+        cs = math.cos(w * t)
+        return e * (cs + mu * sn), e * sn, e * (cs - mu * sn)
+    if branch == CRITICAL:
+        e = math.exp(-t)
+        return (1.0 + t) * e, t * e, (1.0 - t) * e
+    k = params[P_FREQ]
+    e1 = math.exp(-params[P_LSLOW] * t)
+    sh = -math.expm1(-2.0 * k * t) / (2.0 * k)  # e^{-kt} sinh(kt)/k
+    ch = 0.5 * (1.0 + math.exp(-2.0 * k * t))  # e^{-kt} cosh(kt)
+    return e1 * (ch + mu * sh), e1 * sh, e1 * (ch - mu * sh)
+
+
+@njit(cache=True)
+def fundamental(t, params, coefs):
+    """Return ``(omc, tms, omsd, c, S, Sd)`` at time t >= 0.
+
+    omc = 1 - c(t), tms = t - S(t), omsd = 1 - S'(t) are accurate to a few ulps
+    *relative to themselves* for short times (Taylor branch) and to a few ulps
+    of O(1) for long ones; c, S, Sd = S' are accurate to a few ulps.
+    """
+    if params[P_RHO] * t <= SERIES_Q:
+        omc, tms, omsd = _series_parts(t, params[P_RHO], coefs)
+        return omc, tms, omsd, 1.0 - omc, t - tms, 1.0 - omsd
+    c, S, Sd = _closed_form(t, params)
+    return 1.0 - c, t - S, 1.0 - Sd, c, S, Sd

@@ -1,0 +1,116 @@
+"""Thin Python front of the event loop: validate, allocate, run, wrap.
+
+>>> from bounce import Parameters, State, simulate
+>>> p = Parameters(gamma=0.01, mu=0.01)
+>>> traj = simulate(p, State.from_psi_xi(6.0, 0.0, 0.0, 0.0), max_events=5)
+>>> traj.kind_names[:2], round(float(traj.t[0]), 6)
+(('impact', 'impact'), 34.641016)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .events import KIND_NAMES, STOP_FAILED, STOP_NAMES, run_events
+from .model import InputError, Parameters, State
+from .oscillator import make_oscillator
+
+SQRT2 = math.sqrt(2.0)
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Per-event records of one simulation (event = impact, grazing, sticky_start, detach).
+
+    ``t`` is the event time, ``tau`` the duration of the phase that ends at it
+    (time since the previous event or since t = 0), and ``xdot``, ``xidot``,
+    ``eta`` the state just after it (x = 0 at every event): xdot the lower-mass
+    velocity, xidot = xi', eta = xi + gamma.  ``energy_excess`` is E - E_m.
+    """
+
+    params: Parameters
+    initial: State
+    t: np.ndarray
+    tau: np.ndarray
+    xdot: np.ndarray
+    xidot: np.ndarray
+    eta: np.ndarray
+    energy_excess: np.ndarray
+    kind: np.ndarray
+    stop_reason: str
+    t_end: float
+    settings: dict = field(default_factory=dict)
+
+    @property
+    def y_minus_yeq(self) -> np.ndarray:
+        """y - y_eq = 2 eta at the events (x = 0), without cancellation."""
+        return 2.0 * self.eta
+
+    @property
+    def y(self) -> np.ndarray:
+        return self.params.y_eq + 2.0 * self.eta
+
+    @property
+    def ydot(self) -> np.ndarray:
+        return self.xdot + 2.0 * self.xidot
+
+    @property
+    def energy(self) -> np.ndarray:
+        return self.params.energy_min + self.energy_excess
+
+    @property
+    def kind_names(self) -> tuple[str, ...]:
+        return tuple(KIND_NAMES[k] for k in self.kind)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+def _positive_int(name: str, value) -> int:
+    if isinstance(value, bool) or not float(value).is_integer() or int(value) < 1:
+        raise InputError(f"{name} must be an integer >= 1, got {value!r}")
+    return int(value)
+
+
+def simulate(
+    params: Parameters,
+    initial: State,
+    max_events: int = 1000,
+    t_max: float = math.inf,
+    energy_stop: float = 0.0,
+) -> Trajectory:
+    """Simulate from ``initial`` until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
+
+    Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
+    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`).
+    """
+    max_events = _positive_int("events", max_events)
+    t_max = float(t_max)
+    if math.isnan(t_max) or not t_max > 0.0:
+        raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
+    energy_stop = float(energy_stop)
+    if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
+        raise InputError(f"energy_stop must be a finite number >= 0, got {energy_stop!r}")
+    params_arr, coefs = make_oscillator(params.mu)
+    sparams, scoefs = make_oscillator(params.mu / SQRT2)
+    x0, u0, a0, eta0 = initial.deviations(params)
+    out = [np.empty(max_events) for _ in range(6)]
+    kind = np.empty(max_events, dtype=np.int8)
+    n, stop, t_end = run_events(
+        x0, u0, a0, eta0, params.gamma, params_arr, coefs, sparams, scoefs,
+        max_events, t_max, energy_stop, *out, kind,
+    )
+    if stop == STOP_FAILED:
+        raise RuntimeError(
+            f"root finder did not converge after event {n} (t = {t_end!r}); "
+            "please report the parameters and initial state"
+        )
+    t, tau, u, a, eta, e = (arr[:n].copy() for arr in out)
+    return Trajectory(
+        params=params, initial=initial, t=t, tau=tau, xdot=u, xidot=a, eta=eta,
+        energy_excess=e, kind=kind[:n].copy(), stop_reason=STOP_NAMES[stop], t_end=t_end,
+        settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop},
+    )
