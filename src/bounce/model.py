@@ -90,11 +90,12 @@ class State:
         """Initial condition eq. ``sticky-ic``: X0 = 0, Xdot0 = eps, Y0 = 1 + 2 gamma - 2 mu Ydot0."""
         return cls(x=0.0, xdot=eps, y=1.0 + 2.0 * params.gamma - 2.0 * params.mu * ydot0, ydot=ydot0)
 
-    def deviations(self, params: Parameters) -> tuple[float, float, float, float]:
-        """(x, u, a, eta) of the numerical core (module docstring)."""
-        a = 0.5 * (self.ydot - self.xdot)
-        eta = 0.5 * ((self.y - params.y_eq) - self.x)
-        return self.x, self.xdot, a, eta
+    def deviations(self, params: Parameters) -> "Deviations":
+        """The same state in the deviation variables of the numerical core."""
+        return Deviations(
+            x=self.x, xdot=self.xdot, xidot=0.5 * (self.ydot - self.xdot),
+            eta=0.5 * ((self.y - self.x) - 1.0) + params.gamma,  # xi + gamma, one rounding
+        )
 
     def energy(self, params: Parameters) -> float:
         """Total mechanical energy, eq. ``tot-mech-energy``."""
@@ -103,3 +104,32 @@ class State:
         psidot = 0.5 * (self.ydot + self.xdot)
         xidot = 0.5 * (self.ydot - self.xdot)
         return 0.5 * (xidot**2 + xi**2 + psidot**2) + params.gamma * psi
+
+
+@dataclass(frozen=True)
+class Deviations:
+    """A state as the core carries it: x, xdot, xi' and eta = xi + gamma.
+
+    Use it to start a simulation from a state deep in the asymptotic regime
+    without the rounding of y ~ 1 (y - y_eq = x + 2 eta may be ~1e-12).
+    """
+
+    x: float
+    xdot: float
+    xidot: float
+    eta: float
+
+    def __post_init__(self) -> None:
+        for name in ("x", "xdot", "xidot", "eta"):
+            object.__setattr__(self, name, _finite(name + "0", getattr(self, name)))
+        State(self.x, self.xdot, 1.0, 0.0)  # same floor checks as a State
+
+    def deviations(self, params: Parameters) -> "Deviations":
+        return self
+
+    def to_state(self, params: Parameters) -> State:
+        """Heights and velocities (x, xdot, y, ydot); y is rounded to float64."""
+        return State(
+            x=self.x, xdot=self.xdot, y=params.y_eq + self.x + 2.0 * self.eta,
+            ydot=self.xdot + 2.0 * self.xidot,
+        )

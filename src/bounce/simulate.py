@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .events import KIND_NAMES, STOP_FAILED, STOP_NAMES, run_events
-from .model import InputError, Parameters, State
+from .model import Deviations, InputError, Parameters, State
 from .oscillator import make_oscillator
 
 SQRT2 = math.sqrt(2.0)
@@ -32,7 +32,7 @@ class Trajectory:
     """
 
     params: Parameters
-    initial: State
+    initial: State | Deviations
     t: np.ndarray
     tau: np.ndarray
     xdot: np.ndarray
@@ -65,6 +65,13 @@ class Trajectory:
     def kind_names(self) -> tuple[str, ...]:
         return tuple(KIND_NAMES[k] for k in self.kind)
 
+    @property
+    def t_valid(self) -> float:
+        """Last time the records determine the motion up to (see :mod:`bounce.sampling`)."""
+        if self.stop_reason in ("t_max", "sticky_forever"):
+            return self.settings["t_max"] if self.stop_reason == "t_max" else float("inf")
+        return float(self.t[-1]) if len(self.t) else 0.0
+
     def __len__(self) -> int:
         return len(self.t)
 
@@ -77,12 +84,12 @@ def _positive_int(name: str, value) -> int:
 
 def simulate(
     params: Parameters,
-    initial: State,
+    initial: State | Deviations,
     max_events: int = 1000,
     t_max: float = math.inf,
     energy_stop: float = 0.0,
 ) -> Trajectory:
-    """Simulate from ``initial`` until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
+    """Simulate from ``initial`` (a State, or Deviations for states near equilibrium) until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
 
     Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
     that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`).
@@ -96,11 +103,11 @@ def simulate(
         raise InputError(f"energy_stop must be a finite number >= 0, got {energy_stop!r}")
     params_arr, coefs = make_oscillator(params.mu)
     sparams, scoefs = make_oscillator(params.mu / SQRT2)
-    x0, u0, a0, eta0 = initial.deviations(params)
+    start = initial.deviations(params)
     out = [np.empty(max_events) for _ in range(6)]
     kind = np.empty(max_events, dtype=np.int8)
     n, stop, t_end = run_events(
-        x0, u0, a0, eta0, params.gamma, params_arr, coefs, sparams, scoefs,
+        start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs, sparams, scoefs,
         max_events, t_max, energy_stop, *out, kind,
     )
     if stop == STOP_FAILED:

@@ -1,0 +1,90 @@
+"""Closed-form dense output: x(t), y(t) and velocities at any requested times.
+
+Figures never need stored dense trajectories: the per-event records (time,
+kind and the state just after each event) determine the motion in between,
+a flight by eq. (F) of :mod:`bounce.flight` and a sticky phase by the sticky
+oscillator of :mod:`bounce.events`.  Samples after ``t_valid`` (the last time
+the simulation vouches for) are NaN.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .events import STICKY_START
+from .flight import gap
+from .oscillator import fundamental, make_oscillator
+
+SQRT2 = math.sqrt(2.0)
+
+
+@njit(cache=True)
+def _sample(times, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0, gamma, t_valid,
+            params, coefs, sparams, scoefs, out_x, out_xdot, out_ydev, out_ydot):
+    n_ev = t_ev.shape[0]
+    for j in range(times.shape[0]):
+        ts = times[j]
+        if not (ts >= 0.0 and ts <= t_valid):
+            out_x[j] = np.nan
+            out_xdot[j] = np.nan
+            out_ydev[j] = np.nan
+            out_ydot[j] = np.nan
+            continue
+        i = np.searchsorted(t_ev, ts, side="right") - 1
+        if i < 0:
+            t0, x, u, a, eta, sticky = 0.0, x0, u0, a0, eta0, False
+        else:
+            t0, x, u, a, eta, sticky = t_ev[i], 0.0, u_ev[i], a_ev[i], eta_ev[i], kind[i] == STICKY_START
+        dt = ts - t0
+        if sticky:
+            s = dt / SQRT2
+            omc, tms, omsd, c, S, Sd = fundamental(s, sparams, scoefs)
+            es0 = SQRT2 * a
+            eta_t = eta - eta * omc + es0 * S
+            es_t = -eta * S + es0 * Sd
+            out_x[j] = 0.0
+            out_xdot[j] = 0.0
+            out_ydev[j] = 2.0 * eta_t
+            out_ydot[j] = SQRT2 * es_t
+        else:
+            xt, vt, _, omc, tms, omsd, c, S, Sd = gap(dt, x, u, a, eta, gamma, params, coefs)
+            eta_t = eta * c + a * S + gamma * omc  # xi(t) + gamma
+            xid_t = (gamma - eta) * S + a * Sd  # xi'(t)
+            out_x[j] = max(xt, 0.0)  # clip rounding below the floor
+            out_xdot[j] = vt
+            out_ydev[j] = xt + 2.0 * eta_t
+            out_ydot[j] = vt + 2.0 * xid_t
+
+
+def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid):
+    """x, xdot, y - y_eq, ydot at ``times`` from per-event records.
+
+    ``initial`` is the (x, xdot, xidot, eta) state at t = 0 (a
+    :class:`bounce.model.Deviations` or a 4-tuple); the event arrays are those
+    of :class:`bounce.simulate.Trajectory` (or of its netCDF dataset).
+    Returns a dict of float64 arrays with keys x, xdot, y_minus_yeq, ydot.
+    """
+    x0, u0, a0, eta0 = (initial.x, initial.xdot, initial.xidot, initial.eta) if hasattr(initial, "eta") else initial
+    params, coefs = make_oscillator(mu)
+    sparams, scoefs = make_oscillator(mu / SQRT2)
+    times = np.ascontiguousarray(times, dtype=np.float64)
+    out = {k: np.empty(times.shape) for k in ("x", "xdot", "y_minus_yeq", "ydot")}
+    _sample(
+        times.ravel(), np.ascontiguousarray(t_events, dtype=np.float64), np.ascontiguousarray(kind, dtype=np.int8),
+        np.ascontiguousarray(xdot, dtype=np.float64), np.ascontiguousarray(xidot, dtype=np.float64),
+        np.ascontiguousarray(eta, dtype=np.float64), float(x0), float(u0), float(a0), float(eta0),
+        float(gamma), float(t_valid), params, coefs, sparams, scoefs,
+        out["x"].ravel(), out["xdot"].ravel(), out["y_minus_yeq"].ravel(), out["ydot"].ravel(),
+    )
+    return out
+
+
+def sample_trajectory(traj, times):
+    """:func:`sample` for a :class:`bounce.simulate.Trajectory`."""
+    return sample(
+        traj.params.gamma, traj.params.mu, traj.initial.deviations(traj.params), traj.t, traj.kind,
+        traj.xdot, traj.xidot, traj.eta, times, traj.t_valid,
+    )
