@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .flight import (
@@ -46,7 +47,8 @@ from .flight import (
     liftoff_time,
     oscillator_derivatives,
 )
-from .oscillator import P_MU
+from .oscillator import P_MU, P_RHO
+from .short_flight import HANDOVER, MAX_DEGREE, short_flight
 
 # event kinds (netCDF flag_values)
 IMPACT, GRAZING, STICKY_START, DETACH = 0, 1, 2, 3
@@ -169,6 +171,8 @@ def run_events(
     Returns ``(n_events, stop_reason, t_end)``.
     """
     mu = params[P_MU]
+    rho = params[P_RHO]
+    work = np.empty(MAX_DEGREE + 2)
     t_hi = 0.0
     t_lo = 0.0
     n = 0
@@ -197,16 +201,26 @@ def run_events(
             sticky = False
             t_start = liftoff_time(u, a, eta, gamma, params)
         else:
-            status, tau, v, scale, omc, tms, omsd, c, S, Sd = first_contact(
-                t_start, t_limit, x0, u, a, eta, gamma, params, coefs
-            )
-            if status != FOUND:
-                stop = STOP_TIME if status == HORIZON else STOP_FAILED
-                break
+            status = HANDOVER
+            if x0 == 0.0 and t_start == 0.0 and u > 0.0:
+                status, tau, v, scale, dxi, xid_t = short_flight(u, a, eta, gamma, mu, rho, work)
+                if status == HANDOVER:
+                    t_start = tau
+                elif tau > t_limit:
+                    stop = STOP_TIME
+                    break
+            if status == HANDOVER:
+                status, tau, v, scale, omc, tms, omsd, c, S, Sd = first_contact(
+                    t_start, t_limit, x0, u, a, eta, gamma, params, coefs
+                )
+                if status != FOUND:
+                    stop = STOP_TIME if status == HORIZON else STOP_FAILED
+                    break
+                dxi = (gamma - eta) * omc + a * S  # xi(tau) - xi(0)
+                xid_t = (gamma - eta) * S + a * Sd  # xi'(tau)
             x0 = 0.0
             t_start = 0.0
-            xid_t = (gamma - eta) * S + a * Sd  # xi'(tau)
-            eta_t = eta * c + a * S + gamma * omc  # xi(tau) + gamma
+            eta_t = eta + dxi  # xi(tau) + gamma
             # x'' = -gamma - xi'' and x''' = -xi''' just before the contact
             xidd = -(eta_t - gamma) - 2.0 * mu * xid_t
             acc = -gamma - xidd

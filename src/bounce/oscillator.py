@@ -39,6 +39,7 @@ An oscillator is a pair of arrays ``(params, coefs)`` made once per damping by
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from numba import njit
@@ -54,6 +55,19 @@ UNDER, CRITICAL, OVER = 0.0, 1.0, 2.0
 
 
 def make_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
+    """Read-only, cached :func:`build_oscillator` (the tables take a few ms)."""
+    return _cached_oscillator(float(mu))
+
+
+@lru_cache(maxsize=64)
+def _cached_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
+    params, coefs = build_oscillator(mu)
+    params.flags.writeable = False
+    coefs.flags.writeable = False
+    return params, coefs
+
+
+def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
     """Coefficients of xi'' + 2 mu xi' + xi = 0 for the kernels of this module.
 
     Returns ``(params, coefs)``: ``params`` holds mu, rho, the branch (0 under-,
@@ -105,7 +119,7 @@ def _degree_thresholds(rho: float, coefs: np.ndarray) -> np.ndarray:
     sums are positive and smooth on (0, SERIES_Q], and they are evaluated here
     with all N_COEFS terms).
     """
-    q = np.geomspace(1e-14, SERIES_Q, 2000)
+    q = np.geomspace(1e-14, SERIES_Q, 600)
     t = q / rho
     powers = t[:, None] ** np.arange(N_COEFS)[None, :]
     smallest = np.min(np.abs(powers @ coefs.T), axis=1)
