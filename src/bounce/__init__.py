@@ -1,8 +1,12 @@
 """bounce: exact event-driven replication of Cherubini, Metafune & Paparella,
 "On the Stopping Time of a Bouncing Ball"."""
 
+from ._jit_cache import configure as _configure_jit_cache
+
+_configure_jit_cache()  # before any kernel is decorated
+
 from .model import Deviations, InputError, Parameters, State
-from .simulate import Trajectory, simulate
+from .simulate import Trajectory, simulate  # noqa: E402
 
 __version__ = "0.1.0"
 __all__ = ["Deviations", "InputError", "Parameters", "State", "Trajectory", "simulate", "__version__"]

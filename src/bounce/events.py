@@ -125,9 +125,13 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
 
 @njit(cache=True)
 def _at_rest_is_sticky(a, eta, gamma, mu):
-    """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?"""
+    """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?
+
+    F is taken as zero within 8 eps of its terms plus 1: a state given through
+    y ~ 1 is only known to that rounding (approximation at the rounding level).
+    """
     F, Fp = floor_force(a, eta, gamma, mu)
-    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
+    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma + 1.0)
     if F > noise:
         return False
     if F < -noise:

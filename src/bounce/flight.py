@@ -34,7 +34,11 @@ v_k = x'(t_k), Taylor's theorem gives x(t_k + s) >= x_k + v_k s - B s^2/2, whose
 smallest positive root s_k is therefore a step that cannot cross the floor.
 Marching t_{k+1} = t_k + s_k never passes the first root; near a transversal
 root the bound is a parabola tangent to x, so the march converges quadratically
-(two or three evaluations per impact in the asymptotic regime).  It stops when
+(two or three evaluations per impact in the asymptotic regime).  Where |x''| is
+far below B (near sticky onsets, chattering) the global bound would crawl, so
+each step also tries the local bound x'' >= x''(t_k) - M3 h on a window
+[t_k, t_k + h] (M3 bounds |xi'''| as M2 bounds |xi''|), h doubling from the
+last step, and takes the larger of the two certified steps.  It stops when
 x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
 polishes the root.  The only roots that can be missed are dips of x below the
 floor shallower than its rounding error, which no float64 computation can see.
@@ -99,6 +103,14 @@ def safe_step(x, v, B):
 
 
 @njit(cache=True)
+def _envelope_below(level, x, v):
+    """Bounded mode: xi(t) = level - x, xi'(t) = -v; True if sqrt(xi^2 + xi'^2) < level,
+    so xi (whose envelope never grows) can never come back up to ``level``."""
+    xi_t = level - x
+    return math.sqrt(xi_t * xi_t + v * v) < level * (1.0 - 1e-12)
+
+
+@njit(cache=True)
 def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     """First t in (t_start, t_limit] with x(t) = 0, for the flight of eq. (F).
 
@@ -112,8 +124,10 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     FAILED: MAX_STEPS exhausted.
     """
     mu = params[P_MU]
+    xi0 = eta - g
     z1, z2, z3, z4 = oscillator_derivatives(u, a, eta, g, mu)
     B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
+    M3 = derivative_bound(z2, z3, z4) * B_MARGIN
     bounded = g == 0.0 and u + a == 0.0
     level = x0 + eta  # bounded mode: contact needs xi(t) = x0 + xi(0)
     t = t_start
@@ -122,8 +136,17 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         omc, tms, omsd, c, S, Sd = 0.0, 0.0, 0.0, 1.0, 0.0, 1.0
     else:
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+    s = 0.0
     for _ in range(MAX_STEPS):
+        if bounded and _envelope_below(level, x, v):
+            return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd
+        # window of the local bound: twice the last step or the Newton distance
+        h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
         s = safe_step(x, v, B)
+        # local bound on [t, t + h]: x'' >= A - M3 h with A = x''(t); tighter where |x''| << B
+        A = -g + xi0 * Sd - a * (-2.0 * mu * Sd - S)
+        h = max(h, 2.0 * s)
+        s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
         if t + s > t_limit:
             return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd
         t_new = t + s
@@ -133,11 +156,6 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
         if x <= 4.0 * EPS * scale:
             break
-        if bounded:
-            # xi(t) = level - x and xi'(t) = -v
-            xi_t = level - x
-            if math.sqrt(xi_t * xi_t + v * v) < level * (1.0 - 1e-12):
-                return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd
     else:
         return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd
     if v < 0.0:
@@ -151,7 +169,7 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         c -= S * dt
         S += Sd * dt
         Sd += Sdd * dt
-        v += (-g - (eta - g) * Sd - a * Sdd) * dt  # x'' = -g - xi''
+        v += (-g + xi0 * Sd - a * Sdd) * dt  # x'' = -g - xi'', xi'' = -xi0 S' + a S''
     return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd
 
 

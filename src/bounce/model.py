@@ -86,9 +86,18 @@ class State:
         return cls(x=psi - xi, xdot=psidot - xidot, y=psi + xi + 1.0, ydot=psidot + xidot)
 
     @classmethod
-    def sticky_ic(cls, params: Parameters, eps: float, ydot0: float = -0.1) -> "State":
-        """Initial condition eq. ``sticky-ic``: X0 = 0, Xdot0 = eps, Y0 = 1 + 2 gamma - 2 mu Ydot0."""
-        return cls(x=0.0, xdot=eps, y=1.0 + 2.0 * params.gamma - 2.0 * params.mu * ydot0, ydot=ydot0)
+    def sticky_ic(cls, params: Parameters, eps: float, ydot0: float = -0.1) -> "Deviations":
+        """Initial condition eq. ``sticky-ic``: X0 = 0, Xdot0 = eps, Y0 = 1 + 2 gamma - 2 mu Ydot0.
+
+        Returned in the deviation variables, eta = (Y0 - 1)/2 + gamma = 2 gamma - mu Ydot0,
+        xi' = (Ydot0 - eps)/2: for eps = 0 the floor force F = eta + 2 mu xi' - 2 gamma is then
+        zero to rounding of O(gamma), not of O(1) as it would be through Y0 ~ 1.
+        """
+        State(0.0, eps, 1.0, ydot0)  # the usual checks and messages
+        return Deviations(
+            x=0.0, xdot=eps, xidot=0.5 * (float(ydot0) - float(eps)),
+            eta=2.0 * params.gamma - params.mu * float(ydot0),
+        )
 
     def deviations(self, params: Parameters) -> "Deviations":
         """The same state in the deviation variables of the numerical core."""
