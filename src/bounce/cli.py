@@ -1,0 +1,239 @@
+"""Command-line interface: ``bounce simulate ... --out FILE.nc`` (also ``python -m bounce``).
+
+Example::
+
+    bounce simulate --gamma 0.01 --mu 0.01 --x0 6 --xdot0 0 --y0 7 --ydot0 0 \\
+        --events 1000 --dt-sample 0.1 --out run.nc
+
+The initial state is given completely in one of two forms: heights and
+velocities ``--x0 --xdot0 --y0 --ydot0``, or the paper's centre-of-mass and
+spring variables ``--psi0 --psidot0 --xi0 --xidot0`` (eq. ``xi-psi``).
+
+Bad input exits with status 2 and one line ``error: ...`` on stderr naming the
+parameter and its allowed range; a failure while simulating or writing exits
+with status 1.  No file is left behind on failure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections import Counter
+
+import numpy as np
+
+from . import __version__
+from .events import KIND_NAMES
+from .io import check_output_path, to_dataset, write_netcdf
+from .model import InputError, Parameters, State
+from .simulate import simulate
+
+EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+MAX_SAMPLES = 10_000_000
+
+XY_FORM = ("x0", "xdot0", "y0", "ydot0")
+PSI_FORM = ("psi0", "psidot0", "xi0", "xidot0")
+
+
+class UsageError(Exception):
+    """Bad command-line input; the message is the one line printed after 'error: '."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser that raises instead of printing usage and exiting."""
+
+    def error(self, message):
+        raise UsageError(message)
+
+
+# --------------------------------------------------------------------------- argument types
+
+def _number(allowed: str, check=lambda v: True, allow_inf: bool = False):
+    """argparse type: a float in ``allowed`` (a range for the message); NaN (and inf unless allowed) rejected."""
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if math.isnan(value) or (math.isinf(value) and not allow_inf) or not check(value):
+            kind = "number" if allow_inf else "finite number"
+            raise argparse.ArgumentTypeError(f"must be a {kind} (allowed range: {allowed}), got {text!r}")
+        return value
+    return parse
+
+
+def _count(text: str) -> int:
+    """argparse type: an integer >= 1 (``1000`` or ``1e6``)."""
+    try:
+        value = float(text)
+        ok = math.isfinite(value) and value.is_integer() and value >= 1
+    except ValueError:
+        ok = False
+    if not ok:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1 (allowed range: [1, inf)), got {text!r}")
+    return int(value)
+
+
+_ANY = _number("(-inf, inf)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="bounce",
+        allow_abbrev=False,
+        description="Exact event-driven simulation of the two-mass bouncing ball "
+                    "(Cherubini, Metafune, Paparella, 'On the Stopping Time of a Bouncing Ball').",
+    )
+    parser.add_argument("--version", action="version", version=f"bounce {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    p = sub.add_parser(
+        "simulate",
+        allow_abbrev=False,
+        help="simulate one trajectory and write its events (and optional samples) to netCDF",
+        description="Simulate from a complete initial state, given either as --x0 --xdot0 --y0 --ydot0 or as "
+                    "--psi0 --psidot0 --xi0 --xidot0, and write a CF netCDF file. Dimensionless units: lengths "
+                    "in the spring rest length L, times in sqrt(m/2k).",
+    )
+    p.add_argument("--gamma", required=True, type=_number("(0, inf)"),
+                   help="g m / (2 L k), > 0")
+    p.add_argument("--mu", required=True, type=_number("[0, inf)"),
+                   help="damping nu / sqrt(2 k m), >= 0")
+    xy = p.add_argument_group("initial state, heights and velocities")
+    xy.add_argument("--x0", type=_number("[0, inf)"), help="height of the lower mass, >= 0")
+    xy.add_argument("--xdot0", type=_ANY, help="velocity of the lower mass (>= 0 if x0 = 0)")
+    xy.add_argument("--y0", type=_ANY, help="height of the upper mass")
+    xy.add_argument("--ydot0", type=_ANY, help="velocity of the upper mass")
+    pp = p.add_argument_group("initial state, paper variables (psi = (y + x - 1)/2, xi = (y - x - 1)/2)")
+    pp.add_argument("--psi0", type=_ANY, help="centre of mass")
+    pp.add_argument("--psidot0", type=_ANY)
+    pp.add_argument("--xi0", type=_ANY, help="spring deformation")
+    pp.add_argument("--xidot0", type=_ANY)
+    p.add_argument("--events", type=_count, default=1000,
+                   help="stop after N events (default 1000)")
+    p.add_argument("--t-max", dest="t_max", type=_number("(0, inf]", lambda v: v > 0, allow_inf=True),
+                   default=math.inf, help="stop at this time (default inf)")
+    p.add_argument("--energy-stop", dest="energy_stop", type=_number("[0, inf)", lambda v: v >= 0),
+                   default=0.0, help="stop once E - E_m < E (default 0)")
+    p.add_argument("--dt-sample", dest="dt_sample", type=_number("(0, inf)", lambda v: v > 0),
+                   help="also sample x, y and velocities on [0, t_valid] with this step")
+    p.add_argument("--out", required=True, metavar="FILE.nc", help="output netCDF file (its directory must exist)")
+    return parser
+
+
+# --------------------------------------------------------------------------- helpers
+
+def _initial_state(args) -> State:
+    given_xy = [n for n in XY_FORM if getattr(args, n) is not None]
+    given_psi = [n for n in PSI_FORM if getattr(args, n) is not None]
+    opts = lambda names: " ".join("--" + n for n in names)  # noqa: E731
+    if given_xy and given_psi:
+        raise UsageError(
+            f"{opts(given_xy[:1])} and {opts(given_psi[:1])}: the initial state takes one form, "
+            f"either {opts(XY_FORM)} or {opts(PSI_FORM)}, not both"
+        )
+    if not given_xy and not given_psi:
+        raise UsageError(f"the initial state is required: give {opts(XY_FORM)}, or {opts(PSI_FORM)}")
+    form = XY_FORM if given_xy else PSI_FORM
+    missing = [n for n in form if getattr(args, n) is None]
+    if missing:
+        raise UsageError(f"incomplete initial state: missing {opts(missing)} (give all of {opts(form)})")
+    if form is XY_FORM:
+        return State(args.x0, args.xdot0, args.y0, args.ydot0)
+    try:
+        return State.from_psi_xi(args.psi0, args.psidot0, args.xi0, args.xidot0)
+    except InputError as exc:
+        raise InputError(
+            f"{exc} (from --psi0 --psidot0 --xi0 --xidot0: x0 = psi0 - xi0, xdot0 = psidot0 - xidot0)"
+        ) from None
+
+
+def _n_samples(end: float, dt: float) -> int:
+    n = math.floor(end / dt) + 1
+    if n > MAX_SAMPLES:
+        raise UsageError(
+            f"--dt-sample must be >= {end / (MAX_SAMPLES - 1):.6g} to sample [0, {end:.6g}] with at most "
+            f"{MAX_SAMPLES} samples, got {dt!r}"
+        )
+    return n
+
+
+def _sample_times(traj, t_max: float, dt: float) -> np.ndarray:
+    """k dt, k = 0, 1, ... on [0, t_valid]; [0, t_max] if the motion is determined forever
+    (sticky_forever), or [0, last event] if t_max is infinite too."""
+    end = traj.t_valid
+    if not math.isfinite(end):
+        end = t_max if math.isfinite(t_max) else (float(traj.t[-1]) if len(traj) else 0.0)
+    times = np.arange(_n_samples(end, dt), dtype=np.float64) * dt
+    return times[times <= end]
+
+
+def _summary(traj, path, n_samples) -> str:
+    counts = Counter(traj.kind_names)
+    parts = ", ".join(f"{counts[k]} {k}" for k in KIND_NAMES if counts[k])
+    text = f"bounce: {len(traj)} events ({parts or 'none'}), stop: {traj.stop_reason}, t_end = {traj.t_end:.10g}"
+    if n_samples is not None:
+        text += f", {n_samples} samples"
+    return text + f"; wrote {path}"
+
+
+def _simulate_command(args) -> int:
+    params = Parameters(args.gamma, args.mu)
+    initial = _initial_state(args)
+    try:
+        out = check_output_path(args.out)
+    except OSError as exc:
+        raise UsageError(f"--out must be a file in an existing, writable directory: {exc}") from None
+    if args.dt_sample is not None and math.isfinite(args.t_max):
+        _n_samples(args.t_max, args.dt_sample)  # fail before simulating
+    traj = simulate(params, initial, max_events=args.events, t_max=args.t_max, energy_stop=args.energy_stop)
+    times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
+    write_netcdf(to_dataset(traj, times), out)
+    print(_summary(traj, out, None if times is None else len(times)))
+    return EXIT_OK
+
+
+def _join_negative_numbers(argv: list[str]) -> list[str]:
+    """``--opt -1e-3`` -> ``--opt=-1e-3``: argparse takes "-1e-3" and "-inf" for options otherwise."""
+    out: list[str] = []
+    for tok in argv:
+        prev = out[-1] if out else ""
+        if tok.startswith("-") and prev.startswith("--") and "=" not in prev and prev not in ("--help", "--version"):
+            try:
+                float(tok)
+            except ValueError:
+                pass
+            else:
+                out[-1] = f"{prev}={tok}"
+                continue
+        out.append(tok)
+    return out
+
+
+def _one_line(message) -> str:
+    return " ".join(str(message).split())
+
+
+def main(argv=None) -> int:
+    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    try:
+        argv = sys.argv[1:] if argv is None else list(argv)
+        args = build_parser().parse_args(_join_negative_numbers(argv))
+        if args.command == "simulate":
+            return _simulate_command(args)
+        raise UsageError(f"unknown command {args.command!r}")  # pragma: no cover (argparse checks)
+    except SystemExit as exc:  # --help, --version
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_FAILURE)
+    except (UsageError, InputError) as exc:
+        print(f"error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except MemoryError:
+        print("error: not enough memory (reduce --events or increase --dt-sample)", file=sys.stderr)
+        return EXIT_FAILURE
+    except (OSError, RuntimeError) as exc:
+        print(f"error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

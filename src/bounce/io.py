@@ -1,0 +1,426 @@
+"""netCDF I/O of simulated trajectories (CF-1.10).
+
+A file holds the per-event records of one simulation (dimension ``event``) and,
+optionally, closed-form samples of the motion at chosen times (dimension
+``time``).  The event records are complete: together with the global attributes
+(gamma, mu, the initial state and the stop settings) they determine the motion
+exactly, so figure code can resample any file without re-running the
+simulation::
+
+    ds = read_dataset("run.nc")
+    s = sample_dataset(ds, times)      # bit-for-bit sample_trajectory(traj, times)
+
+This module knows nothing of the numerics beyond calling
+:func:`bounce.sampling.sample_trajectory`.
+
+Units: dimensionless; lengths in units of the spring rest length L, times in
+units of sqrt(m / 2k) (paper, eq. ``dimensionless-eq-motion``).
+
+Files are written atomically (temporary file in the target directory, then
+``os.replace``) and reproducibly: no timestamps, so two writes of the same run
+give identical bytes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import os
+import subprocess
+import uuid
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+from .events import KIND_NAMES
+from .model import Deviations, Parameters, State
+from .sampling import sample_trajectory
+from .simulate import Trajectory
+
+__all__ = [
+    "DatasetError",
+    "EVENT_VARIABLES",
+    "SAMPLED_VARIABLES",
+    "check_output_path",
+    "complete_prefix",
+    "from_dataset",
+    "git_info",
+    "read_dataset",
+    "read_trajectory",
+    "sample_dataset",
+    "to_dataset",
+    "write_netcdf",
+]
+
+REFERENCES = (
+    "A. M. Cherubini, G. Metafune and F. Paparella, "
+    '"On the Stopping Time of a Bouncing Ball", Universita di Lecce'
+)
+UNITS_COMMENT = (
+    "Dimensionless (units = '1'): lengths in units of the spring rest length L, "
+    "times in units of sqrt(m/2k), velocities in L/sqrt(m/2k), energies in 2kL^2 "
+    "(gamma = g m/(2 L k), mu = nu/sqrt(2 k m))."
+)
+COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
+
+# name -> (long_name, comment or None) of the per-event variables
+EVENT_VARIABLES = {
+    "t": ("time of the event", None),
+    "tau": ("duration of the phase (flight or sticky phase) ending at the event",
+            "time since the previous event, or since t = 0 for the first one; exact, "
+            "whereas differences of t are rounded"),
+    "xdot": ("velocity of the lower mass just after the event", "the lower mass is at x = 0 at every event"),
+    "y": ("height of the upper mass at the event",
+          "y = y_eq + 2 eta, rounded to float64; late in the asymptotic regime y ~ 1 hides "
+          "the deviations: use y_minus_yeq"),
+    "y_minus_yeq": ("height of the upper mass above its static equilibrium y_eq = 1 - 2 gamma, at the event",
+                    "computed as 2 eta (x = 0 at events): exact, without cancellation"),
+    "ydot": ("velocity of the upper mass just after the event", None),
+    "xidot": ("spring deformation rate xi' = (ydot - xdot)/2 just after the event",
+              "state variable of the numerical core (with xdot and eta); the dense sampler restarts "
+              "exactly from it"),
+    "eta": ("spring deformation from its static value, eta = xi + gamma = (y - y_eq - x)/2, just after the event",
+            "state variable of the numerical core (with xdot and xidot); the dense sampler restarts "
+            "exactly from it"),
+    "energy": ("total mechanical energy E just after the event", "E = E_m + energy_excess"),
+    "energy_excess": ("mechanical energy above the static equilibrium, E - E_m, just after the event",
+                      "E_m = -gamma^2/2; computed from the core state without cancellation"),
+}
+
+# name in the file -> (key of the sampler output, long_name)
+SAMPLED_VARIABLES = {
+    "sampled_x": ("x", "height of the lower mass"),
+    "sampled_xdot": ("xdot", "velocity of the lower mass"),
+    "sampled_y": ("y", "height of the upper mass"),
+    "sampled_ydot": ("ydot", "velocity of the upper mass"),
+    "sampled_y_minus_yeq": ("y_minus_yeq", "height of the upper mass above its static equilibrium y_eq = 1 - 2 gamma"),
+}
+_SAMPLED_COMMENT = "closed-form dense output at the times of coordinate 'time'; NaN after t_valid"
+
+_REQUIRED_ATTRS = ("gamma", "mu", "x0", "xdot0", "xidot0", "eta0", "stop_reason", "t_end",
+                   "max_events", "t_max", "energy_stop")
+
+
+class DatasetError(ValueError):
+    """A dataset that is not a bounce trajectory file (missing or inconsistent content)."""
+
+
+# --------------------------------------------------------------------------- provenance
+
+@functools.lru_cache(maxsize=None)
+def git_info() -> tuple[str, str]:
+    """``(commit, dirty)`` of the git checkout holding this package's source.
+
+    ``commit`` is the ``git rev-parse HEAD`` hash, ``dirty`` is "true" if the
+    package directory has uncommitted changes (untracked files included) and
+    "false" otherwise; both are "unknown" when the package is not a tracked part
+    of a git checkout (e.g. an installed wheel) or git is unavailable.
+    """
+    pkg_dir = Path(__file__).resolve().parent
+
+    def git(*args: str) -> str:
+        return subprocess.run(
+            ["git", "-C", str(pkg_dir), *args], capture_output=True, text=True, timeout=20, check=True,
+        ).stdout.strip()
+
+    try:
+        commit = git("rev-parse", "HEAD")
+        git("ls-files", "--error-unmatch", "--", "__init__.py")  # the package itself is tracked here
+        status = git("status", "--porcelain", "--untracked-files=normal", "--", ".")
+    except (OSError, subprocess.SubprocessError):
+        return "unknown", "unknown"
+    return commit, ("true" if status else "false")
+
+
+# --------------------------------------------------------------------------- Trajectory -> Dataset
+
+def _var(dims, data, long_name, comment=None, dtype=np.float64, **extra):
+    attrs = {"long_name": long_name, "units": "1"}
+    if comment:
+        attrs["comment"] = comment
+    attrs.update(extra)
+    return xr.Variable(dims, np.asarray(data, dtype=dtype), attrs)
+
+
+def _finite_1d(times) -> np.ndarray:
+    times = np.asarray(times, dtype=np.float64)
+    if times.ndim != 1:
+        raise ValueError(f"sample_times must be one-dimensional, got shape {times.shape}")
+    if not np.all(np.isfinite(times)):
+        raise ValueError("sample_times must be finite")
+    return times
+
+
+def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
+    """The CF-1.10 dataset of a trajectory; with ``sample_times``, also x, y, velocities at those times.
+
+    Event variables (dimension ``event``): t, tau, xdot, y, y_minus_yeq, ydot,
+    xidot, eta, energy, energy_excess (float64) and kind (int8, CF flags
+    impact/grazing/sticky_start/detach).  Sampled variables (dimension
+    ``time``, a float64 coordinate): sampled_x, sampled_y, sampled_xdot,
+    sampled_ydot, sampled_y_minus_yeq (NaN after ``t_valid``).  The global
+    attributes hold everything :func:`from_dataset` needs to rebuild ``traj``.
+    """
+    params = traj.params
+    initial = traj.initial
+    dev = initial.deviations(params)
+    state = initial if isinstance(initial, State) else dev.to_state(params)
+    event = ("event",)
+    data_vars = {
+        "t": _var(event, traj.t, *EVENT_VARIABLES["t"]),
+        "tau": _var(event, traj.tau, *EVENT_VARIABLES["tau"]),
+        "xdot": _var(event, traj.xdot, *EVENT_VARIABLES["xdot"]),
+        "y": _var(event, traj.y, *EVENT_VARIABLES["y"]),
+        "y_minus_yeq": _var(event, traj.y_minus_yeq, *EVENT_VARIABLES["y_minus_yeq"]),
+        "ydot": _var(event, traj.ydot, *EVENT_VARIABLES["ydot"]),
+        "xidot": _var(event, traj.xidot, *EVENT_VARIABLES["xidot"]),
+        "eta": _var(event, traj.eta, *EVENT_VARIABLES["eta"]),
+        "energy": _var(event, traj.energy, *EVENT_VARIABLES["energy"]),
+        "energy_excess": _var(event, traj.energy_excess, *EVENT_VARIABLES["energy_excess"]),
+        "kind": _var(
+            event, traj.kind, "kind of event",
+            "impact: collision rule (psi' and xi' exchanged); grazing: tangential contact, "
+            "nothing exchanged; sticky_start: the lower mass comes to rest on the floor; "
+            "detach: it leaves the floor (floor force back to 0)",
+            dtype=np.int8,
+            flag_values=np.arange(len(KIND_NAMES), dtype=np.int8),
+            flag_meanings=" ".join(KIND_NAMES),
+        ),
+    }
+    coords = {}
+    if sample_times is not None:
+        times = _finite_1d(sample_times)
+        samples = sample_trajectory(traj, times)
+        samples["y"] = params.y_eq + samples["y_minus_yeq"]
+        coords["time"] = _var(("time",), times, "time of the samples")
+        for name, (key, long_name) in SAMPLED_VARIABLES.items():
+            data_vars[name] = _var(("time",), samples[key], long_name, _SAMPLED_COMMENT)
+    settings = traj.settings
+    commit, dirty = git_info()
+    attrs = {
+        "Conventions": "CF-1.10",
+        "title": "Two-mass bouncing ball: event records of one simulation",
+        "source": f"bounce {__version__}",
+        "references": REFERENCES,
+        "comment": (
+            UNITS_COMMENT + " One record per event (impact, grazing, sticky_start, detach) strictly after "
+            "t = 0 in time order, except a sticky phase beginning at t = 0, recorded as sticky_start at "
+            "t = 0; x = 0 at every event and the state is the one just after it.  The records and the "
+            "global attributes determine the motion exactly (bounce.io.sample_dataset)."
+        ),
+        "bounce_version": __version__,
+        "git_commit": commit,
+        "git_dirty": dirty,
+        "gamma": params.gamma,
+        "mu": params.mu,
+        "y_eq": params.y_eq,
+        "energy_min": params.energy_min,
+        "initial_form": "state" if isinstance(initial, State) else "deviations",
+        "x0": state.x,
+        "xdot0": state.xdot,
+        "y0": state.y,
+        "ydot0": state.ydot,
+        "xidot0": dev.xidot,
+        "eta0": dev.eta,
+        "stop_reason": traj.stop_reason,
+        "t_end": float(traj.t_end),
+        "t_valid": float(traj.t_valid),
+        "max_events": int(settings["max_events"]),
+        "t_max": float(settings["t_max"]),
+        "energy_stop": float(settings["energy_stop"]),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+# --------------------------------------------------------------------------- Dataset -> Trajectory
+
+def complete_prefix(ds: xr.Dataset) -> int:
+    """How many leading event records of ``ds`` are the consecutive events 0, 1, ... of the simulation.
+
+    Equal to the number of records unless the dataset was thinned (an ``event``
+    coordinate holding the index of each kept event in the full simulation,
+    e.g. ``ds.isel(event=...)`` of scenes that keep the first events and a
+    log-spaced selection after them).  The motion is determined by the records
+    only up to the last event of that prefix.
+    """
+    n = int(ds.sizes.get("event", 0))
+    if "event" in ds.coords:
+        ok = np.asarray(ds["event"].values) == np.arange(n)
+        return n if ok.all() else int(np.argmin(ok))
+    total = ds.attrs.get("n_events_simulated")
+    if total is not None and int(total) != n:
+        raise DatasetError(
+            f"the dataset keeps {n} of {int(total)} events but has no 'event' coordinate telling which"
+        )
+    return n
+
+
+def _trajectory(ds: xr.Dataset, n: int | None = None, check_t_valid: bool = True) -> Trajectory:
+    """The Trajectory of the first ``n`` (default all) event records of ``ds``."""
+    missing = [name for name in _REQUIRED_ATTRS if name not in ds.attrs]
+    missing += [name for name in ("t", "tau", "xdot", "xidot", "eta", "energy_excess", "kind")
+                if name not in ds.variables]
+    if missing:
+        raise DatasetError(f"not a bounce trajectory dataset: missing {', '.join(missing)}")
+    a = ds.attrs
+    params = Parameters(float(a["gamma"]), float(a["mu"]))
+    dev = Deviations(float(a["x0"]), float(a["xdot0"]), float(a["xidot0"]), float(a["eta0"]))
+    form = str(a.get("initial_form", "deviations"))
+    if form == "state":
+        initial = State(float(a["x0"]), float(a["xdot0"]), float(a["y0"]), float(a["ydot0"]))
+        if initial.deviations(params) != dev:
+            raise DatasetError("inconsistent initial state: (x0, xdot0, y0, ydot0) does not give (xidot0, eta0)")
+    elif form == "deviations":
+        initial = dev
+    else:
+        raise DatasetError(f"initial_form must be 'state' or 'deviations', got {form!r}")
+
+    def arr(name, dtype=np.float64):
+        values = np.asarray(ds[name].values)
+        if values.ndim != 1:
+            raise DatasetError(f"variable {name!r} must be one-dimensional")
+        return np.array(values[:n], dtype=dtype)  # a copy, independent of the dataset
+
+    kind = arr("kind", np.int8)
+    if kind.size and not (kind.min() >= 0 and kind.max() < len(KIND_NAMES)):
+        raise DatasetError(f"kind must be in 0..{len(KIND_NAMES) - 1}")
+    traj = Trajectory(
+        params=params, initial=initial, t=arr("t"), tau=arr("tau"), xdot=arr("xdot"), xidot=arr("xidot"),
+        eta=arr("eta"), energy_excess=arr("energy_excess"), kind=kind, stop_reason=str(a["stop_reason"]),
+        t_end=float(a["t_end"]),
+        settings={"max_events": int(a["max_events"]), "t_max": float(a["t_max"]),
+                  "energy_stop": float(a["energy_stop"])},
+    )
+    if check_t_valid and "t_valid" in a and float(a["t_valid"]) != traj.t_valid:
+        raise DatasetError(f"inconsistent t_valid: attribute {float(a['t_valid'])!r}, records give {traj.t_valid!r}")
+    return traj
+
+
+def from_dataset(ds: xr.Dataset) -> Trajectory:
+    """Rebuild the :class:`~bounce.simulate.Trajectory` stored in ``ds`` (exactly: same parameters,
+    initial state and event arrays), e.g. for :func:`bounce.sampling.sample_trajectory`.
+
+    Raises :class:`DatasetError` if ``ds`` is not a complete trajectory dataset
+    (missing content, or thinned records: see :func:`complete_prefix`).
+    """
+    n = int(ds.sizes.get("event", 0))
+    prefix = complete_prefix(ds)
+    if prefix < n:
+        raise DatasetError(
+            f"the event records are thinned (record {prefix} is event {int(ds['event'].values[prefix])}): "
+            f"the motion is determined only up to event {prefix - 1}; sample_dataset samples that part"
+        )
+    return _trajectory(ds)
+
+
+def read_dataset(path) -> xr.Dataset:
+    """Open a bounce netCDF file, load it into memory and close it."""
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+def read_trajectory(path) -> Trajectory:
+    """:func:`from_dataset` of the file at ``path``."""
+    return from_dataset(read_dataset(path))
+
+
+def sample_dataset(ds: xr.Dataset, times) -> dict:
+    """x, xdot, y, y_minus_yeq, ydot at ``times`` from a trajectory dataset alone.
+
+    Bit-for-bit equal to :func:`bounce.sampling.sample_trajectory` of the
+    simulated trajectory (plus ``y = y_eq + y_minus_yeq``); NaN outside
+    [0, t_valid].  For a thinned dataset (see :func:`complete_prefix`) the
+    samples are exact up to the last event of the complete prefix and NaN after it.
+    """
+    n = int(ds.sizes.get("event", 0))
+    prefix = complete_prefix(ds)
+    if prefix == n:
+        traj = _trajectory(ds)
+        out = sample_trajectory(traj, times)
+    else:
+        traj = _trajectory(ds, prefix, check_t_valid=False)
+        out = sample_trajectory(traj, times)
+        limit = float(traj.t[-1]) if prefix else 0.0
+        beyond = ~(np.asarray(times, dtype=np.float64) <= limit)
+        for value in out.values():
+            value[beyond] = np.nan
+    out["y"] = traj.params.y_eq + out["y_minus_yeq"]
+    return out
+
+
+# --------------------------------------------------------------------------- writing
+
+def _probe_writable(directory: Path) -> None:
+    """Create and remove a file in ``directory``: the only reliable writability test (root, ACLs, ro mounts)."""
+    probe = directory / f".bounce-probe-{os.getpid()}-{uuid.uuid4().hex}"
+    fd = os.open(probe, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600)
+    os.close(fd)
+    os.unlink(probe)
+
+
+def check_output_path(path) -> Path:
+    """Check that a file can be written at ``path``; return it as a Path.
+
+    Raises FileNotFoundError (the directory does not exist), NotADirectoryError
+    (its parent is not a directory), IsADirectoryError (``path`` is a
+    directory) or PermissionError (the directory is not writable), each with a
+    message naming the path.
+    """
+    path = Path(os.fspath(path))
+    if path.name in ("", ".", "..") or path.is_dir():
+        raise IsADirectoryError(f"output path {str(path)!r} is a directory, not a file")
+    parent = path.parent
+    if not parent.exists():
+        raise FileNotFoundError(f"output directory {str(parent)!r} does not exist")
+    if not parent.is_dir():
+        raise NotADirectoryError(f"output directory {str(parent)!r} is not a directory")
+    try:
+        _probe_writable(parent)
+    except OSError as exc:
+        raise PermissionError(
+            f"output directory {str(parent)!r} is not writable ({exc.strerror or exc})"
+        ) from None
+    return path
+
+
+def _encoding(ds: xr.Dataset) -> dict:
+    """float64 (or int8 flags) with zlib compression, no fill values."""
+    encoding = {}
+    for name, var in ds.variables.items():
+        if np.issubdtype(var.dtype, np.floating):
+            encoding[name] = {"dtype": "float64", "_FillValue": None, **COMPRESSION}
+        elif np.issubdtype(var.dtype, np.integer):
+            encoding[name] = {"dtype": var.dtype.name, "_FillValue": None, **COMPRESSION}
+    return encoding
+
+
+def write_netcdf(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` to ``path`` atomically (netCDF4/HDF5, float64, zlib); return the path.
+
+    The file is written to a temporary file in the same directory, flushed to
+    disk and moved into place with ``os.replace``: readers see either the old
+    file or the complete new one, and on any failure no file (and no temporary
+    file) is left behind.  The parent directory must exist and be writable
+    (see :func:`check_output_path`).
+    """
+    path = check_output_path(path)
+    tmp = path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}.tmp"
+    try:
+        ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4",
+                     encoding=_encoding(ds), unlimited_dims=())
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    with contextlib.suppress(OSError):  # persist the rename (best effort)
+        dir_fd = os.open(path.parent, os.O_RDONLY)
+        try:
+            os.fsync(dir_fd)
+        finally:
+            os.close(dir_fd)
+    return path

@@ -1,0 +1,244 @@
+"""Command line: one-line errors naming the parameter, no file on failure, valid files on success."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import bounce.io as bio
+from bounce.cli import main
+
+GOOD = ["--gamma", "0.01", "--mu", "0.01", "--x0", "6", "--xdot0", "0", "--y0", "7", "--ydot0", "0"]
+PSI = ["--psi0", "6", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"]
+
+
+def _with(**changes):
+    """GOOD with some options replaced (value None removes the option)."""
+    opts = dict(zip(GOOD[::2], GOOD[1::2]))
+    for key, value in changes.items():
+        opts["--" + key] = value
+    return [x for k, v in opts.items() if v is not None for x in (k, v)]
+
+
+BAD = {
+    "gamma_negative": (_with(gamma="-1"), "gamma"),
+    "gamma_zero": (_with(gamma="0"), "gamma"),
+    "gamma_nan": (_with(gamma="nan"), "gamma"),
+    "gamma_inf": (_with(gamma="inf"), "gamma"),
+    "gamma_text": (_with(gamma="abc"), "gamma"),
+    "gamma_minus_inf": (_with(gamma="-inf"), "gamma"),
+    "gamma_minus_exponent": (_with(gamma="-1e-3"), "gamma"),
+    "gamma_missing": (_with(gamma=None), "gamma"),
+    "mu_negative": (_with(mu="-0.5"), "mu"),
+    "mu_nan": (_with(mu="nan"), "mu"),
+    "x0_negative": (_with(x0="-1"), "x0"),
+    "x0_nan": (_with(x0="nan"), "x0"),
+    "ydot0_inf": (_with(ydot0="inf"), "ydot0"),
+    "down_on_floor": (_with(x0="0", xdot0="-1"), "xdot0"),
+    "psi_below_floor": (GOOD[:4] + ["--psi0", "0", "--psidot0", "0", "--xi0", "1", "--xidot0", "0"], "x0"),
+    "psi_overflow": (GOOD[:4] + ["--psi0", "1e308", "--psidot0", "0", "--xi0", "-1e308", "--xidot0", "0"], "psi0"),
+    "psi0_nan": (GOOD[:4] + ["--psi0", "nan", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"], "psi0"),
+    "forms_mixed": (GOOD + ["--psi0", "6"], "psi0"),
+    "state_incomplete": (_with(ydot0=None), "ydot0"),
+    "psi_incomplete": (GOOD[:4] + PSI[:6], "xidot0"),
+    "state_missing": (GOOD[:4], "x0"),
+    "events_zero": (GOOD + ["--events", "0"], "events"),
+    "events_fraction": (GOOD + ["--events", "1.5"], "events"),
+    "events_text": (GOOD + ["--events", "many"], "events"),
+    "t_max_zero": (GOOD + ["--t-max", "0"], "t-max"),
+    "t_max_nan": (GOOD + ["--t-max", "nan"], "t-max"),
+    "energy_stop_negative": (GOOD + ["--energy-stop", "-1"], "energy-stop"),
+    "dt_zero": (GOOD + ["--dt-sample", "0"], "dt-sample"),
+    "dt_negative": (GOOD + ["--dt-sample", "-0.1"], "dt-sample"),
+    "dt_nan": (GOOD + ["--dt-sample", "nan"], "dt-sample"),
+    "dt_too_small": (GOOD + ["--t-max", "100", "--dt-sample", "1e-9"], "dt-sample"),
+    "unknown_option": (GOOD + ["--bogus", "1"], "--bogus"),
+}
+
+
+def _run(argv, capsys):
+    code = main(argv)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _check_error(code, err, name):
+    assert code != 0
+    lines = err.splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("error: ") and name in lines[0], err
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_input(case, tmp_path, capsys):
+    argv, name = BAD[case]
+    out = tmp_path / "run.nc"
+    code, stdout, err = _run(["simulate", *argv, "--out", str(out)], capsys)
+    _check_error(code, err, name)
+    assert stdout == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_missing_out(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = _run(["simulate", *GOOD], capsys)
+    _check_error(code, err, "--out")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_missing_command(capsys):
+    code, _, err = _run([], capsys)
+    _check_error(code, err, "COMMAND")
+
+
+@pytest.mark.parametrize("where", ["missing_dir", "parent_is_file", "is_directory"])
+def test_bad_output_path(where, tmp_path, capsys):
+    (tmp_path / "file").write_text("x")
+    target = {"missing_dir": tmp_path / "missing" / "run.nc",
+              "parent_is_file": tmp_path / "file" / "run.nc",
+              "is_directory": tmp_path}[where]
+    code, _, err = _run(["simulate", *GOOD, "--out", str(target)], capsys)
+    _check_error(code, err, "--out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_unwritable_directory(tmp_path, capsys, monkeypatch):
+    calls = []
+    monkeypatch.setattr("bounce.cli.simulate", lambda *a, **k: calls.append(a))  # must not be reached
+
+    def denied(directory):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(bio, "_probe_writable", denied)
+    code, _, err = _run(["simulate", *GOOD, "--out", str(tmp_path / "run.nc")], capsys)
+    _check_error(code, err, "--out")
+    assert "not writable" in err and calls == []
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0, reason="root can write anywhere")
+def test_read_only_directory(tmp_path, capsys):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    try:
+        code, _, err = _run(["simulate", *GOOD, "--out", str(ro / "run.nc")], capsys)
+        _check_error(code, err, "--out")
+        assert list(ro.iterdir()) == []
+    finally:
+        ro.chmod(0o755)
+
+
+def test_failed_write_exits_nonzero(tmp_path, capsys, monkeypatch):
+    def fail(self, path, *args, **kwargs):
+        open(path, "wb").close()
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr("xarray.Dataset.to_netcdf", fail)
+    code, out, err = _run(["simulate", *GOOD, "--events", "5", "--out", str(tmp_path / "run.nc")], capsys)
+    _check_error(code, err, "No space left")
+    assert out == "" and list(tmp_path.iterdir()) == []
+
+
+def test_good_run(tmp_path, capsys):
+    path = tmp_path / "run.nc"
+    code, out, err = _run(["simulate", *GOOD, "--events", "20", "--out", str(path)], capsys)
+    assert code == 0 and err == ""
+    assert len(out.splitlines()) == 1
+    assert "20 events" in out and "max_events" in out and str(path) in out
+    ds = bio.read_dataset(path)
+    assert ds.sizes["event"] == 20 and "time" not in ds.dims
+    assert (ds.attrs["gamma"], ds.attrs["mu"], ds.attrs["x0"], ds.attrs["y0"]) == (0.01, 0.01, 6.0, 7.0)
+    assert ds.attrs["stop_reason"] == "max_events" and ds.attrs["max_events"] == 20
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_psi_form_equals_xy_form(tmp_path, capsys):
+    a, b = tmp_path / "xy.nc", tmp_path / "psi.nc"
+    assert main(["simulate", *GOOD, "--events", "20", "--out", str(a)]) == 0
+    assert main(["simulate", *GOOD[:4], *PSI, "--events", "20", "--out", str(b)]) == 0
+    capsys.readouterr()
+    assert a.read_bytes() == b.read_bytes()
+
+
+def test_negative_exponent_values(tmp_path, capsys):
+    path = tmp_path / "run.nc"
+    argv = ["simulate", "--gamma", "1e-2", "--mu", "1e-2", "--x0", "6", "--xdot0", "-1e-1", "--y0", "7",
+            "--ydot0", "-2E-1", "--events", "3", "--out", str(path)]
+    assert main(argv) == 0
+    capsys.readouterr()
+    a = bio.read_dataset(path).attrs
+    assert (a["xdot0"], a["ydot0"]) == (-0.1, -0.2)
+
+
+def test_dt_sample(tmp_path, capsys):
+    path = tmp_path / "run.nc"
+    argv = ["simulate", *GOOD, "--events", "30", "--energy-stop", "0", "--dt-sample", "0.5", "--out", str(path)]
+    code, out, _ = _run(argv, capsys)
+    assert code == 0 and "samples" in out
+    ds = bio.read_dataset(path)
+    t_valid = ds.attrs["t_valid"]
+    times = ds.time.values
+    assert times[0] == 0.0 and times[-1] <= t_valid < times[-1] + 0.5
+    np.testing.assert_array_equal(times, np.arange(len(times)) * 0.5)
+    for name in bio.SAMPLED_VARIABLES:
+        assert ds[name].dims == ("time",) and not np.isnan(ds[name].values).any()
+    assert ds.sampled_x.values[0] == 6.0 and ds.sampled_y.values[0] == 7.0
+    s = bio.sample_dataset(ds, times)
+    np.testing.assert_array_equal(s["x"], ds.sampled_x.values)
+
+
+def test_dt_sample_t_max(tmp_path, capsys):
+    path = tmp_path / "run.nc"
+    argv = ["simulate", *GOOD, "--t-max", "50", "--dt-sample", "1", "--out", str(path)]
+    assert main(argv) == 0
+    capsys.readouterr()
+    ds = bio.read_dataset(path)
+    assert ds.attrs["stop_reason"] == "t_max" and ds.attrs["t_valid"] == 50.0
+    np.testing.assert_array_equal(ds.time.values, np.arange(51.0))
+
+
+def test_dt_sample_at_rest(tmp_path, capsys):
+    # at rest on the floor at equilibrium: sticky from t = 0 on
+    rest = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--x0", "0", "--xdot0", "0", "--y0", "0.98",
+            "--ydot0", "0", "--dt-sample", "1"]
+    a, b = tmp_path / "a.nc", tmp_path / "b.nc"
+    assert main([*rest, "--out", str(a)]) == 0
+    assert main([*rest, "--t-max", "3", "--out", str(b)]) == 0
+    capsys.readouterr()
+    ds = bio.read_dataset(a)  # sticky forever, no t_max: samples up to the last event
+    assert ds.attrs["stop_reason"] == "sticky_forever" and ds.attrs["t_valid"] == np.inf
+    np.testing.assert_array_equal(ds.time.values, [0.0])
+    ds = bio.read_dataset(b)
+    np.testing.assert_array_equal(ds.time.values, [0.0, 1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(ds.sampled_x.values, 0.0)
+    np.testing.assert_allclose(ds.sampled_y_minus_yeq.values, 0.0, atol=1e-15)  # y0 = 0.98 is rounded
+
+
+def test_help(capsys):
+    assert main(["simulate", "--help"]) == 0
+    assert "--psi0" in capsys.readouterr().out
+
+
+def test_module_entry_point(tmp_path):
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    path = tmp_path / "run.nc"
+    good = subprocess.run(
+        [sys.executable, "-m", "bounce", "simulate", *GOOD, "--events", "10", "--out", str(path)],
+        capture_output=True, text=True, env=env, timeout=120,
+    )
+    assert good.returncode == 0, good.stderr
+    assert len(good.stdout.splitlines()) == 1 and good.stderr == ""
+    assert bio.read_dataset(path).sizes["event"] == 10
+    bad = subprocess.run(
+        [sys.executable, "-m", "bounce", "simulate", *_with(gamma="-1"), "--out", str(tmp_path / "bad.nc")],
+        capture_output=True, text=True, env=env, timeout=120,
+    )
+    assert bad.returncode == 2 and bad.stdout == ""
+    assert bad.stderr.splitlines() == ["error: gamma must be > 0 (allowed range: (0, inf)), got -1.0"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]
