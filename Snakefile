@@ -1,0 +1,37 @@
+"""bounce: regenerate every figure of Cherubini, Metafune & Paparella, "On the Stopping Time of a
+Bouncing Ball", from config/config.yaml, through netCDF datasets.
+
+    snakemake --cores 2                                   # full pipeline -> results/
+    snakemake --cores 2 --configfile config/ci.yaml       # the CI-sized run of the same DAG
+
+Stages (one file each under workflow/rules/): simulate -> sticky -> figures.
+"""
+
+import json
+import re
+from pathlib import Path
+
+from snakemake.utils import min_version, validate
+
+min_version("8.0")
+
+
+configfile: Path(workflow.basedir) / "config" / "config.yaml"
+
+
+validate(config, Path(workflow.basedir) / "config" / "schema.yaml")
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/sticky.smk"
+include: "workflow/rules/figures.smk"
+
+
+rule all:
+    """Every figure of the paper (PNG and PDF) and the derived datasets behind them."""
+    input:
+        figure_files(),
+        "results/data/sticky-convergence.nc",
+        "results/data/sticky-inference.nc",
+    default_target: True

@@ -1,0 +1,19 @@
+"""Stage 3: every figure, from netCDF only -> results/figures/fig-<paper label>.{png,pdf}."""
+
+
+rule figure:
+    """Draw one figure (named after the paper's figure label) from its datasets."""
+    input:
+        lambda w: FIGURES[w.name][0],
+    output:
+        png="results/figures/fig-{name}.png",
+        pdf="results/figures/fig-{name}.pdf",
+    params:
+        spec=lambda w: as_json(FIGURES[w.name][1]),
+    log:
+        "results/logs/figures/{name}.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in FIGURES),
+    shell:
+        "python -m bounce.tasks figure --name {wildcards.name} --spec {params.spec:q} "
+        "--inputs {input} --out {output.png} {output.pdf} > {log} 2>&1"

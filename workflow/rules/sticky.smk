@@ -1,0 +1,49 @@
+"""Stage 2: the sticky solutions of section 8.2 (eq. sticky-ic), their eps-convergence and the
+inference of the unstated gamma, mu from the paper's t_c = 5.23..."""
+
+
+def sticky_run_spec(w):
+    """Scene spec of one eps run: only gamma, mu, Ydot0, horizon and cap (not the eps lists)."""
+    return as_json({
+        "gamma": STICKY["gamma"], "mu": STICKY["mu"],
+        "initial": {"sticky": {"eps": float(w.eps), "ydot": STICKY["ydot0"]}},
+        "stop": {"events": STICKY["events"], "t_max": STICKY["t_max"]},
+    })
+
+
+rule sticky_run:
+    """Simulate eq. sticky-ic for one eps into netCDF."""
+    output:
+        "results/data/sticky/eps{eps}.nc",
+    params:
+        spec=sticky_run_spec,
+    log:
+        "results/logs/sticky/eps{eps}.log",
+    shell:
+        "python -m bounce.tasks scene --name sticky-eps{wildcards.eps} --spec {params.spec:q} --out {output} > {log} 2>&1"
+
+
+rule sticky_convergence:
+    """Impacts in (0, t_c) and RMS distance to the eps = 0 solution (eq. L2-norm), per eps."""
+    input:
+        STICKY_CONV,
+    output:
+        "results/data/sticky-convergence.nc",
+    params:
+        spec=as_json({"samples": STICKY["samples"]}),
+    log:
+        "results/logs/sticky/convergence.log",
+    shell:
+        "python -m bounce.tasks sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
+
+
+rule sticky_inference:
+    """t_c on a (gamma, mu) grid: which parameters give the paper's t_c = 5.23..., how uniquely."""
+    output:
+        "results/data/sticky-inference.nc",
+    params:
+        spec=as_json({k: STICKY[k] for k in ("gamma", "mu", "ydot0", "t_c_paper", "inference")}),
+    log:
+        "results/logs/sticky/inference.log",
+    shell:
+        "python -m bounce.tasks sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"
