@@ -38,11 +38,19 @@ def _figure(args) -> None:
     FIGURES[args.name]([read_dataset(p) for p in args.inputs], args.spec, args.out)
 
 
+def _thumbnails(args) -> None:
+    from .figures.common import thumbnail
+
+    for src, dst in zip(args.inputs, args.out, strict=True):
+        thumbnail(src, dst)
+
+
 TASKS = {
     "scene": _scene,
     "sticky-inference": _sticky_inference,
     "sticky-convergence": _sticky_convergence,
     "figure": _figure,
+    "thumbnails": _thumbnails,
 }
 
 

@@ -15,6 +15,15 @@ def sticky_file(eps):
     return f"results/data/sticky/eps{eps_tag(eps)}.nc"
 
 
+def sticky_run_spec(w):
+    """Scene spec of one eps run: only gamma, mu, Ydot0, horizon and cap (not the eps lists)."""
+    return as_json({
+        "gamma": STICKY["gamma"], "mu": STICKY["mu"],
+        "initial": {"sticky": {"eps": float(w.eps), "ydot": STICKY["ydot0"]}},
+        "stop": {"events": STICKY["events"], "t_max": STICKY["t_max"]},
+    })
+
+
 SCENES = sorted(config["scenes"])
 STICKY = config["sticky"]
 STICKY_TRAJ = [sticky_file(e) for e in STICKY["eps_traj"]]
@@ -26,7 +35,7 @@ for _name, _spec in config["figures"].items():
     _inputs = [f"results/data/{_spec['scene']}.nc"]
     FIGURES[_name] = (_inputs, dict(_spec, label=_name))
     if _name.startswith("very_rigid_poincare"):
-        FIGURES[_name + "_magni"] = (_inputs, dict(_spec, label=_name + "_magni"))
+        FIGURES[f"{_name}_magni"] = (_inputs, dict(_spec, label=f"{_name}_magni"))
 FIGURES["sticky-traj"] = (STICKY_TRAJ, {"t_end": STICKY["t_max"]})
 FIGURES["sticky-convergence"] = (["results/data/sticky-convergence.nc"], {})
 FIGURES["sticky-inference"] = (["results/data/sticky-inference.nc"], {})

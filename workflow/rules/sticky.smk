@@ -2,15 +2,6 @@
 inference of the unstated gamma, mu from the paper's t_c = 5.23..."""
 
 
-def sticky_run_spec(w):
-    """Scene spec of one eps run: only gamma, mu, Ydot0, horizon and cap (not the eps lists)."""
-    return as_json({
-        "gamma": STICKY["gamma"], "mu": STICKY["mu"],
-        "initial": {"sticky": {"eps": float(w.eps), "ydot": STICKY["ydot0"]}},
-        "stop": {"events": STICKY["events"], "t_max": STICKY["t_max"]},
-    })
-
-
 rule sticky_run:
     """Simulate eq. sticky-ic for one eps into netCDF."""
     output:

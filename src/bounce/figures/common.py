@@ -53,3 +53,14 @@ def save(fig, outputs) -> None:
 
 def label_time(ax) -> None:
     ax.set_xlabel(r"$t$  [$\sqrt{m/2k}$]")
+
+
+def thumbnail(src, dst, width: int = 480) -> None:
+    """A ``width``-pixel-wide PNG copy of the figure ``src`` (for the README)."""
+    from PIL import Image
+
+    with Image.open(src) as img:
+        img = img.convert("RGB")
+        img.thumbnail((width, width * img.height // img.width))
+        Path(dst).parent.mkdir(parents=True, exist_ok=True)
+        img.save(dst, optimize=True)

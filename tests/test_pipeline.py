@@ -1,0 +1,127 @@
+"""Integration: the CI-sized pipeline (config/ci.yaml) runs end to end, is idempotent, lints clean,
+and rejects a bad config before any job starts with a message naming the key."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "-s", str(ROOT / "Snakefile")]
+
+
+def _env():
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"  # `python` in rules
+    return env
+
+
+def _snakemake(workdir, *args, check=True):
+    proc = subprocess.run(
+        [*SNAKEMAKE, "--directory", str(workdir), *args], capture_output=True, text=True, env=_env(), timeout=900
+    )
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
+    return proc
+
+
+@pytest.fixture(scope="session")
+def ci_results(tmp_path_factory):
+    """Run the CI-sized pipeline once; the notebooks' test reuses it."""
+    work = tmp_path_factory.mktemp("pipeline")
+    _snakemake(work, "--configfile", str(ROOT / "config" / "ci.yaml"), "--cores", "2")
+    return work / "results"
+
+
+def test_every_figure_and_dataset_is_produced(ci_results):
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    figures = sorted(p.name for p in (ci_results / "figures").iterdir())
+    for name in config["figures"]:
+        for ext in ("png", "pdf"):
+            assert f"fig-{name}.{ext}" in figures
+    for name in ("rigid-fall", "rest-coeff", "very_rigid_poincare_magni", "very_rigid_poincare_overdamped_magni",
+                 "sticky-traj", "sticky-convergence", "energy-decay", "asymptotic-laws"):
+        assert (ci_results / "figures" / f"fig-{name}.png").stat().st_size > 10_000
+    for scene in config["scenes"]:
+        with xr.open_dataset(ci_results / "data" / f"{scene}.nc") as ds:
+            assert ds.attrs["scene"] == scene
+            assert ds.attrs["gamma"] == config["scenes"][scene]["gamma"]
+            assert ds.attrs["git_commit"]
+            assert np.all(np.diff(ds["t"].values) > 0)
+            for var in ds.variables.values():
+                assert "long_name" in var.attrs and "units" in var.attrs
+
+
+def test_sticky_study_matches_the_paper(ci_results):
+    """t_c of the chosen (gamma, mu) truncates to the paper's 5.23; the RMS norm falls faster than eps."""
+    with xr.open_dataset(ci_results / "data" / "sticky-convergence.nc") as ds:
+        assert np.floor(ds.attrs["t_c"] * 100) / 100 == 5.23
+        rms, eps = ds["rms"].values, ds["eps"].values
+        slope = np.polyfit(np.log(eps), np.log(rms), 1)[0]
+        assert slope > 1.0, f"RMS difference should fall faster than linearly in eps (paper, section 8.2): {slope}"
+
+
+def test_rerun_does_nothing(ci_results):
+    proc = _snakemake(ci_results.parent, "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
+    assert "Nothing to be done" in proc.stdout + proc.stderr
+
+
+def test_lint_is_clean_but_for_conda():
+    """The only lint left is 'use conda/containers': conda is not reachable here; environment.txt pins pip deps."""
+    proc = subprocess.run([*SNAKEMAKE, "--lint"], capture_output=True, text=True, env=_env(), cwd=ROOT)
+    lints = set(re.findall(r"^\s+\* (.+?):\s*$", proc.stdout + proc.stderr, flags=re.M))
+    assert lints <= {"Specify a conda environment or container for each rule."}, lints
+
+
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (lambda c: c["scenes"]["rigid-fall"].update(gamma=-0.01), "gamma"),
+        (lambda c: c["scenes"]["rigid-fall"].update(gamm=0.01), "gamm"),
+        (lambda c: c["scenes"]["rigid-fall"]["stop"].update(events=0), "events"),
+        (lambda c: c["sticky"].update(mu=-1.0), "mu"),
+    ],
+)
+def test_bad_config_stops_before_any_job(tmp_path, edit, message):
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    edit(config)
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml.safe_dump(config))
+    proc = _snakemake(tmp_path, "--configfile", str(bad), "-n", check=False)
+    assert proc.returncode != 0
+    out = proc.stdout + proc.stderr
+    assert message in out, out[-2000:]
+    assert not (tmp_path / "results").exists()
+
+
+@pytest.fixture(scope="session")
+def notebook_results(ci_results):
+    return ci_results
+
+
+def test_notebooks_run_against_ci_results(ci_results, tmp_path):
+    """Every jupytext notebook executes top to bottom against the CI-sized results."""
+    jupytext = pytest.importorskip("jupytext")
+    nbclient = pytest.importorskip("nbclient")
+    notebooks = sorted((ROOT / "notebooks").glob("*.py"))
+    assert notebooks, "no notebooks found"
+    for path in notebooks:
+        nb = jupytext.read(path)
+        client = nbclient.NotebookClient(
+            nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}
+        )
+        os.environ["BOUNCE_RESULTS"] = str(ci_results)
+        try:
+            client.execute()
+        finally:
+            os.environ.pop("BOUNCE_RESULTS", None)
+        shutil.rmtree(tmp_path / ".ipynb_checkpoints", ignore_errors=True)
