@@ -1,0 +1,473 @@
+"""Speed benchmark of ``bounce.simulate`` against a scipy ``solve_ivp`` baseline.
+
+What is measured, for the two scenes of the paper (section 2 model,
+eq. ``dimensionless-eq-motion``; psi' = xi = xi' = 0 at t = 0):
+
+  A  gamma = mu = 0.01,       psi(0) = 6      (the chaotic transient figure)
+  B  gamma = 1e-5, mu = 2,    psi(0) = 0.25   (the overdamped example)
+
+* ``bounce``: wall time of ``simulate(Parameters(gamma, mu),
+  State.from_psi_xi(psi0, 0, 0, 0), max_events=N)`` (N = 1e6 by default), after
+  a warm-up call, ``--repeats`` times; median, min and max of impacts/s.
+* ``scipy``: the baseline of ``benchmarks/scipy_baseline.py`` (DOP853, rtol =
+  atol = 1e-12, terminal event x = 0 crossed downwards, restart after every
+  impact with x' -> -x').  It is orders of magnitude slower, so it gets a time
+  budget: one *long* run with loss checks on (``--scipy-seconds``, default 20 s,
+  or until it loses an impact) gives how far it got and how accurate it was;
+  its speed is then timed ``--repeats`` times, checks off, on the first K
+  impacts, K = what the long run did in its first ``--scipy-timing-seconds``
+  (default 3 s).  ``bounce`` is timed on the same K impacts as well
+  (row "bounce, same K"), which is the like-for-like ratio; the 1e6-impact row
+  covers later (shorter) flights too.
+* ratio = median impacts/s of the row / median impacts/s of scipy, same scene,
+  same run of this script.
+* error: relative error of the first impact time t1 against the exact
+  sqrt(2 psi0 / gamma) (free fall of the centre of mass with the spring at
+  rest), and the largest relative error of t1..t10 against an independent
+  mpmath computation (closed-form flights -- psi'' = -gamma,
+  xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 40 digits).
+* lost impact (scipy, see scipy_baseline.py): first flight that (i) stepped
+  over a dip of x below the floor, (ii) stalled (zero-length flight) or
+  (iii) went below x = -1e-9; and separately the first impact whose time
+  differs from bounce's by more than 1e-6 relative (the transient of A is
+  chaotic, so this happens after a few tens of impacts whatever the method).
+* numba JIT: in a fresh process with NUMBA_CACHE_DIR set to a new temporary
+  directory, the time of ``import bounce`` and of the first
+  ``simulate(..., max_events=10)`` (= compile time); then the same in a second
+  fresh process with that cache now filled (warm cache).
+
+The process (and its subprocesses) is pinned to one core with
+``os.sched_setaffinity`` when available.  The machine may be shared: quote the
+medians and the ratios, not single runs.
+
+Run::
+
+    python benchmarks/bench_simulator.py --events 1000000 --repeats 5
+    python benchmarks/bench_simulator.py --json results/bench.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from scipy_baseline import simulate_scipy  # noqa: E402
+
+SCENES = {
+    "A": dict(gamma=0.01, mu=0.01, psi0=6.0),
+    "B": dict(gamma=1e-5, mu=2.0, psi0=0.25),
+}
+N_REF = 10  # impacts checked against the mpmath reference
+DIVERGE_REL = 1e-6
+
+
+# --------------------------------------------------------------------------
+# independent high-precision reference for the first impacts
+# --------------------------------------------------------------------------
+
+class _Flight:
+    """Closed-form free flight in (psi, xi): psi'' = -gamma, xi'' + 2 mu xi' + xi = 0.
+
+    (Sum and difference of eq. dimensionless-eq-motion with psi = (y + x - 1)/2,
+    xi = (y - x - 1)/2.)  ``mp`` is the mpmath module or None for float64/numpy.
+    """
+
+    def __init__(self, gamma, mu, psi, p, xi, a, mp=None):
+        self.mp, self.gamma, self.psi, self.p = mp, gamma, psi, p
+        if mu == 1:
+            raise ValueError("critical damping mu = 1 not handled by the reference")
+        if mp is None:
+            sqrt = math.sqrt
+        else:
+            sqrt = mp.sqrt
+        self.under = mu < 1
+        if self.under:  # xi = e^{-mu t} (xi0 cos wt + (a0 + mu xi0)/w sin wt)
+            w = sqrt(1 - mu * mu)
+            self.c = (mu, w, xi, (a + mu * xi) / w, a, (mu * a + xi) / w)
+        else:  # xi = A e^{r1 t} + B e^{r2 t}
+            s = sqrt(mu * mu - 1)
+            r1, r2 = -mu + s, -mu - s
+            A = (a - r2 * xi) / (r1 - r2)
+            self.c = (r1, r2, A, xi - A)
+
+    def _fns(self):
+        if self.mp is None:
+            return np.exp, np.cos, np.sin
+        return self.mp.exp, self.mp.cos, self.mp.sin
+
+    def state(self, t):
+        """(psi, psi', xi, xi') at time t after the start of the flight."""
+        exp, cos, sin = self._fns()
+        psi = self.psi + self.p * t - self.gamma * t * t / 2
+        p = self.p - self.gamma * t
+        if self.under:
+            mu, w, c0, s0, a0, s1 = self.c
+            e, cw, sw = exp(-mu * t), cos(w * t), sin(w * t)
+            xi = e * (c0 * cw + s0 * sw)
+            a = e * (a0 * cw - s1 * sw)
+        else:
+            r1, r2, A, B = self.c
+            e1, e2 = exp(r1 * t), exp(r2 * t)
+            xi = A * e1 + B * e2
+            a = A * r1 * e1 + B * r2 * e2
+        return psi, p, xi, a
+
+    def x(self, t):
+        psi, _, xi, _ = self.state(t)
+        return psi - xi
+
+
+def reference_impacts(gamma, mu, psi0, n=N_REF, dps=40):
+    """First ``n`` impact times from psi(0) = psi0, xi = psi' = xi' = 0, in mpmath.
+
+    Each flight: scan x(t) = psi - xi in float64 with step h (first sign
+    change; smallest sampled x before it reported as the tangency margin), then
+    refine the bracket in mpmath (``findroot``, Illinois) at ``dps`` digits and
+    apply the impact psi' <-> xi'.  Returns (times as mpf, margin), margin =
+    smallest sampled interior local minimum of x before an impact divided by
+    the flight's largest sampled x (inf if x has no such dip; a value near 0
+    would flag a near-tangency the scan could have misjudged).
+    """
+    import mpmath
+
+    mp = mpmath.mp
+    mp.dps = dps
+    g, m = mpmath.mpf(gamma), mpmath.mpf(mu)  # the exact binary values bounce sees
+    psi, p, xi, a = mpmath.mpf(psi0), mpmath.mpf(0), mpmath.mpf(0), mpmath.mpf(0)
+    t_abs, times, margin = mpmath.mpf(0), [], math.inf
+    for k in range(n):
+        fl_mp = _Flight(g, m, psi, p, xi, a, mp=mpmath)
+        fl_np = _Flight(gamma, mu, float(psi), float(p), float(xi), float(a))
+        h, t_lo, found = 1e-3, 0.0, None
+        while found is None:  # scan in chunks of 1e5 steps
+            tt = t_lo + h * np.arange(1, 100001)
+            xs = fl_np.x(tt)
+            neg = np.nonzero(xs < 0)[0]
+            j = int(neg[0]) if neg.size else len(xs)
+            seg = xs[:j]  # sampled x before the first sign change: any near-tangency?
+            if seg.size > 2:
+                mins = np.nonzero((seg[1:-1] < seg[:-2]) & (seg[1:-1] < seg[2:]))[0] + 1
+                if mins.size:
+                    margin = min(margin, float(seg[mins].min() / seg.max()))
+            if neg.size:
+                found = (tt[j - 1] if j else t_lo, tt[j])
+            else:
+                t_lo = float(tt[-1])
+                if t_lo > 1e5:
+                    raise RuntimeError("reference: no impact found")
+        lo, hi = mpmath.mpf(found[0]), mpmath.mpf(found[1])
+        if k > 0 and found[0] == 0.0:
+            lo = mpmath.mpf(found[1]) / 1000  # x(0) = 0 after an impact: stay off the restart
+        if not (fl_mp.x(lo) > 0 and fl_mp.x(hi) < 0):
+            raise RuntimeError(f"reference: bracket lost at flight {k}")
+        tau = mpmath.findroot(fl_mp.x, (lo, hi), solver="illinois", tol=mpmath.mpf(10) ** (-2 * dps + 10))
+        psi, p, xi, a = fl_mp.state(tau)
+        p, a = a, p  # impact: x' -> -x', y' unchanged  <=>  psi' <-> xi'
+        t_abs += tau
+        times.append(t_abs)
+    return times, margin
+
+
+def errors_vs_reference(t, ref, t1_exact):
+    """(relative error of t1 vs the exact sqrt, max relative error of t1..t_n vs mpmath)."""
+    import mpmath
+
+    n = min(len(t), len(ref))
+    if n == 0:
+        return math.nan, math.nan
+    e1 = float(abs((mpmath.mpf(float(t[0])) - t1_exact) / t1_exact))
+    en = max(float(abs((mpmath.mpf(float(t[k])) - ref[k]) / ref[k])) for k in range(n))
+    return e1, en
+
+
+# --------------------------------------------------------------------------
+# timing helpers
+# --------------------------------------------------------------------------
+
+def pin_to_one_core():
+    if not hasattr(os, "sched_setaffinity"):
+        return "not pinned (os.sched_setaffinity unavailable)"
+    allowed = sorted(os.sched_getaffinity(0))
+    core = allowed[-1]
+    os.sched_setaffinity(0, {core})
+    return f"pinned to core {core} of {allowed} with os.sched_setaffinity (subprocesses inherit it)"
+
+
+def time_bounce(params, state, n_events, repeats):
+    """Wall times of ``repeats`` calls (each a loop of calls lasting >= 0.2 s if one call is short)."""
+    from bounce import simulate
+
+    tr = simulate(params, state, max_events=n_events)  # warm-up (cache load / compile)
+    t0 = time.perf_counter()
+    simulate(params, state, max_events=n_events)
+    once = time.perf_counter() - t0
+    inner = max(1, int(math.ceil(0.2 / max(once, 1e-6)))) if once < 0.2 else 1
+    walls = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(inner):
+            simulate(params, state, max_events=n_events)
+        walls.append((time.perf_counter() - t0) / inner)
+    return tr, walls, inner
+
+
+def jit_times(repeats):
+    """Cold-cache and warm-cache import + first call, each in a fresh subprocess.
+
+    The cache is redirected to a new temporary directory through both
+    NUMBA_CACHE_DIR and BOUNCE_NUMBA_CACHE_DIR (bounce points numba's cache at
+    a subdirectory of the latter, keyed by the core's source, see
+    bounce/_jit_cache.py).  Checks: the subprocess reports numba's CACHE_DIR,
+    which must lie in the temporary directory; the cold run must have written
+    cache files there; the warm run must not have written new ones (else the
+    source changed in between or the cache missed, and the run is flagged).
+    """
+    code = (
+        "import json, time\n"
+        "t0 = time.perf_counter()\n"
+        "from bounce import Parameters, State, simulate\n"
+        "t1 = time.perf_counter()\n"
+        "simulate(Parameters(0.01, 0.01), State.from_psi_xi(6.0, 0.0, 0.0, 0.0), max_events=10)\n"
+        "t2 = time.perf_counter()\n"
+        "simulate(Parameters(0.01, 0.01), State.from_psi_xi(6.0, 0.0, 0.0, 0.0), max_events=10)\n"
+        "t3 = time.perf_counter()\n"
+        "import numba\n"
+        "print(json.dumps({'import': t1 - t0, 'first_call': t2 - t1, 'second_call': t3 - t2,\n"
+        "                  'cache_dir': str(numba.config.CACHE_DIR)}))\n"
+    )
+
+    def files(root):
+        return {(p.name, p.stat().st_mtime_ns) for p in Path(root).rglob("*") if p.is_file()}
+
+    out = {"cold": [], "warm": []}
+    for _ in range(repeats):
+        with tempfile.TemporaryDirectory(prefix="bounce-numba-cache-") as cache:
+            env = dict(os.environ, NUMBA_CACHE_DIR=cache, BOUNCE_NUMBA_CACHE_DIR=cache)
+            env.pop("NUMBA_DISABLE_JIT", None)
+            for which in ("cold", "warm"):
+                before = files(cache)
+                r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+                d = json.loads(r.stdout.strip().splitlines()[-1])
+                after = files(cache)
+                d["cache_in_tmp"] = d["cache_dir"].startswith(cache)
+                d["files_written"] = len(after - before)
+                d["ok"] = d["cache_in_tmp"] and (d["files_written"] > 0 if which == "cold" else d["files_written"] == 0)
+                out[which].append(d)
+    return out
+
+
+def _list(runs, key):
+    return ", ".join(f"{d[key]:.2f}" for d in runs)
+
+
+def _first_over(a, b, thr):
+    n = min(len(a), len(b))
+    if n == 0:
+        return None
+    rel = np.abs(a[:n] - b[:n]) / np.abs(b[:n])
+    idx = np.nonzero(rel > thr)[0]
+    return int(idx[0]) if idx.size else None
+
+
+# --------------------------------------------------------------------------
+
+def run_scene(name, cfg, args, notes):
+    import mpmath
+    from bounce import Parameters, State, simulate
+
+    gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]
+    params = Parameters(gamma, mu)
+    state = State.from_psi_xi(psi0, 0.0, 0.0, 0.0)
+    label = f"{name} (g={gamma:g}, mu={mu:g}, psi0={psi0:g})"
+
+    # reference
+    ref, margin = reference_impacts(gamma, mu, psi0)
+    mpmath.mp.dps = 40
+    t1_exact = mpmath.sqrt(2 * mpmath.mpf(psi0) / mpmath.mpf(gamma))
+    if abs(ref[0] - t1_exact) / t1_exact > mpmath.mpf(10) ** -30:
+        raise RuntimeError("reference t1 disagrees with the closed form")
+
+    # bounce, N events
+    tr, walls, _ = time_bounce(params, state, args.events, args.repeats)
+    imp = tr.kind == 0
+    n_imp = int(imp.sum())
+    t_imp = tr.t[imp]
+    rates = [n_imp / w for w in walls]
+    err_b = errors_vs_reference(t_imp, ref, t1_exact)
+
+    # scipy long run (checks on)
+    long = simulate_scipy(gamma, mu, state, args.events, args.scipy_seconds, check=True)
+    K = int(np.searchsorted(long.wall, args.scipy_timing_seconds, side="right"))
+    if long.lost_index is not None:
+        K = min(K, long.lost_index)
+    K = max(K, 1)
+    K = min(K, long.n_impacts)
+    err_s = errors_vs_reference(long.t, ref, t1_exact)
+    div = _first_over(long.t, t_imp, DIVERGE_REL)
+    tau_b = np.diff(np.concatenate(([0.0], t_imp)))
+    tau_s = np.diff(np.concatenate(([0.0], long.t)))
+    div_tau = _first_over(tau_s, tau_b, DIVERGE_REL)
+
+    # scipy timing runs (checks off), first K impacts
+    s_walls = []
+    for _ in range(args.repeats):
+        r = simulate_scipy(gamma, mu, state, K, 10 * args.scipy_seconds, check=False, stop_on_loss=False)
+        if r.n_impacts != K:
+            raise RuntimeError(f"scipy timing run stopped early: {r.stop_reason}")
+        s_walls.append(r.elapsed)
+    s_rates = [K / w for w in s_walls]
+    s_med = statistics.median(s_rates)
+
+    # bounce on the same K impacts
+    trK, wallsK, innerK = time_bounce(params, state, K, args.repeats)
+    ratesK = [int((trK.kind == 0).sum()) / w for w in wallsK]
+
+    # naive restart (event g = x after impacts too): how soon does it stall?
+    naive = simulate_scipy(gamma, mu, state, args.events, args.naive_seconds, check=False,
+                           restart_event="plain")
+
+    rows = []
+    for method, n, ws, rs, err in (
+        ("bounce", n_imp, walls, rates, err_b),
+        (f"bounce, same K", K, wallsK, ratesK, err_b),
+        ("scipy DOP853 1e-12", K, s_walls, s_rates, err_s),
+    ):
+        rows.append({
+            "scene": label, "method": method, "impacts": n,
+            "median_wall_s": statistics.median(ws), "rate_median": statistics.median(rs),
+            "rate_min": min(rs), "rate_max": max(rs), "err_t1": err[0], f"err_t1_t{N_REF}": err[1],
+            "ratio_to_scipy": statistics.median(rs) / s_med,
+        })
+
+    long_info = {
+        "impacts": long.n_impacts, "elapsed_s": long.elapsed,
+        "rate": long.n_impacts / long.elapsed if long.elapsed else math.nan,
+        "stop_reason": long.stop_reason, "steps": long.n_steps, "rhs_calls": long.n_rhs,
+        "lost_index": long.lost_index, "lost_reasons": list(long.lost_reasons),
+        "lost_detail": long.lost_detail,
+        "first_rel_time_diff_gt_1e-6": div, "first_rel_tau_diff_gt_1e-6": div_tau,
+        "min_x_over_flights": float(long.min_x.min()) if long.min_x.size else None,
+        "naive_restart": {"impacts": naive.n_impacts, "stop_reason": naive.stop_reason,
+                          "lost_index": naive.lost_index, "lost_reasons": list(naive.lost_reasons),
+                          "elapsed_s": naive.elapsed},
+        "reference_tangency_margin": margin,
+        "bounce_stop_reason": tr.stop_reason, "bounce_events": len(tr),
+        "bounce_t_end": float(tr.t[-1]),
+    }
+    lost = ("none within the budget" if long.lost_index is None
+            else f"at impact #{long.lost_index + 1} ({', '.join(long.lost_reasons)}, t = {long.lost_detail['t_restart']:.10g})")
+    notes.append(
+        f"{name}: scipy long run (loss checks on): {long.n_impacts} impacts in {long.elapsed:.1f} s "
+        f"= {long_info['rate']:.3g}/s, {long.n_steps} steps, {long.n_rhs} rhs calls, stop: {long.stop_reason}; "
+        f"reached t = {long.t[-1] if long.n_impacts else 0:.8g} (bounce's {len(tr):,} events reach t = {tr.t[-1]:.8g})"
+    )
+    notes.append(f"{name}: scipy lost an impact (missed dip / stall / x < -1e-9): {lost}; "
+                 f"min x over all its flights (dense output) = {long_info['min_x_over_flights']:.3g}")
+    notes.append(
+        f"{name}: first impact whose time differs from bounce's by > 1e-6 relative: "
+        f"{'#' + str(div + 1) if div is not None else 'none'} "
+        f"(flight duration tau > 1e-6 relative: {'#' + str(div_tau + 1) if div_tau is not None else 'none'}; "
+        f"of {min(long.n_impacts, n_imp)} compared)"
+    )
+    notes.append(
+        f"{name}: naive restart (event g = x with direction -1 only): "
+        + (f"zero-length stall at impact #{naive.lost_index + 1} after {naive.elapsed:.1f} s"
+           if naive.lost_index is not None else
+           f"no stall in {naive.n_impacts} impacts ({naive.elapsed:.1f} s, {naive.stop_reason})")
+    )
+    return rows, long_info
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Speed benchmark of bounce.simulate vs scipy solve_ivp (see module docstring).")
+    ap.add_argument("--events", type=float, default=1e6, help="impacts per bounce run (default 1e6)")
+    ap.add_argument("--repeats", type=int, default=5, help="timing repeats (default 5)")
+    ap.add_argument("--scipy-seconds", type=float, default=20.0, help="budget of the long scipy run per scene (default 20)")
+    ap.add_argument("--scipy-timing-seconds", type=float, default=3.0,
+                    help="K = impacts of the long scipy run within this time; scipy is timed on K (default 3)")
+    ap.add_argument("--naive-seconds", type=float, default=10.0, help="budget of the naive-restart scipy run (default 10)")
+    ap.add_argument("--jit-repeats", type=int, default=3, help="cold/warm JIT subprocess pairs (default 3)")
+    ap.add_argument("--scenes", default="AB", help="subset of scenes, e.g. A")
+    ap.add_argument("--json", metavar="FILE", help="also save the table and details as JSON")
+    args = ap.parse_args(argv)
+    args.events = int(args.events)
+
+    pin = pin_to_one_core()
+    load0 = os.getloadavg() if hasattr(os, "getloadavg") else None
+    started = time.perf_counter()
+    import numba
+    import scipy
+
+    import bounce
+
+    jit = jit_times(args.jit_repeats)
+    rows, details, notes = [], {}, []
+    for name in args.scenes:
+        r, d = run_scene(name, SCENES[name], args, notes)
+        rows += r
+        details[name] = d
+    load1 = os.getloadavg() if hasattr(os, "getloadavg") else None
+
+    # ---- print
+    head = ["scene", "method", "impacts", "median wall [s]", "impacts/s median (min-max)",
+            "rel err t1", f"max rel err t1..t{N_REF}", "ratio vs scipy"]
+    body = [[r["scene"], r["method"], f"{r['impacts']:,}", f"{r['median_wall_s']:.4g}",
+             f"{r['rate_median']:.3g} ({r['rate_min']:.3g}-{r['rate_max']:.3g})",
+             f"{r['err_t1']:.1e}", f"{r[f'err_t1_t{N_REF}']:.1e}", f"{r['ratio_to_scipy']:.3g}"] for r in rows]
+    widths = [max(len(h), *(len(b[i]) for b in body)) for i, h in enumerate(head)]
+    lines = [
+        f"bounce {bounce.__version__} speed benchmark -- python {platform.python_version()}, numpy {np.__version__}, "
+        f"scipy {scipy.__version__}, numba {numba.__version__}, {platform.machine()}, {os.cpu_count()} cpus",
+        f"{pin}; load average {load0[0]:.2f} at start, {load1[0]:.2f} at end" if load0 else pin,
+        f"repeats = {args.repeats}; bounce N = {args.events:,} events; scipy: long run {args.scipy_seconds:g} s, "
+        f"timed on the first K impacts (K = what it did in {args.scipy_timing_seconds:g} s)",
+        "",
+        "  ".join(h.ljust(w) for h, w in zip(head, widths)),
+        "  ".join("-" * w for w in widths),
+    ]
+    lines += ["  ".join(c.ljust(w) for c, w in zip(b, widths)) for b in body]
+    lines.append("")
+    lines += notes
+    cold, warm = jit["cold"], jit["warm"]
+    med = lambda lst, k: statistics.median(d[k] for d in lst)  # noqa: E731
+    lines.append(
+        f"numba JIT, fresh process, empty cache dir (x{len(cold)}): import {med(cold, 'import'):.2f} s, "
+        f"first simulate(max_events=10) = compile {med(cold, 'first_call'):.2f} s "
+        f"({_list(cold, 'first_call')}), second call {med(cold, 'second_call') * 1e6:.0f} us"
+        + ("" if all(d["ok"] for d in cold) else "  [WARNING: cache not redirected/written, not a cold compile]")
+    )
+    lines.append(
+        f"numba JIT, fresh process, warm cache dir (x{len(warm)}): import {med(warm, 'import'):.2f} s, "
+        f"first call {med(warm, 'first_call'):.2f} s ({_list(warm, 'first_call')}), "
+        f"import + first call {statistics.median(d['import'] + d['first_call'] for d in warm):.2f} s"
+        + ("" if all(d["ok"] for d in warm) else "  [WARNING: the warm run wrote cache files: it recompiled]")
+    )
+    lines.append(f"total benchmark time {time.perf_counter() - started:.0f} s")
+    text = "\n".join(lines)
+    print(text)
+
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        payload = {
+            "args": vars(args), "pinning": pin, "loadavg_start": load0, "loadavg_end": load1,
+            "versions": {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
+                         "numba": numba.__version__, "bounce": bounce.__version__},
+            "rows": rows, "scipy_details": details, "jit": jit, "notes": notes, "text": text,
+        }
+        Path(args.json).write_text(json.dumps(payload, indent=2, default=str))
+
+
+if __name__ == "__main__":
+    main()
