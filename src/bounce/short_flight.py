@@ -50,14 +50,28 @@ def short_flight(u, a, eta, g, mu, rho, d):
     Returns ``(status, t, v, scale, dxi, xid)``: FOUND with the contact time t,
     x'(t), the rounding scale of x, xi(t) - xi(0) and xi'(t); or HANDOVER with t
     a time up to which x > 0 is certified (the other values unset).
+
+    Everything comes from two Horner sums, D(t) = sum_{k>=2} d_k t^k and D'(t):
+    x = u t - g t^2/2 - D, x' = u - g t - D', xi - xi0 = a t + D, xi' = a + D'.
+
+    Fast path: one evaluation at t_p, the root of the cubic Taylor model
+    u + A0 t/2 + J0 t^2/6 = 0 (A0, J0 the second and third derivatives of x at 0),
+    then Newton steps dt = -x_p/v_p until tau = t_p + dt passes (ii).  Each iterate is certified by
+    (i) x > 0 on (0, tau): x(s) >= u s - B s^2/2 > 0 up to 2u/B, and backwards from
+    t_p, x(t_p - r) >= x_p + |v_p| r - B r^2/2 > 0 for r between its roots, which lie
+    within |dt| (+ the rounding level) of tau and beyond 2|v_p|/B - 2|dt| (x_p < 0) or
+    2|v_p|/B (x_p >= 0); the two ranges cover (0, tau) when
+    B (t_p + 2|dt| [x_p < 0]) <= 2 (u + |v_p|); (ii) |x(tau)| <= B dt^2/2 (Taylor),
+    required to be below the rounding level of x.  Otherwise the safe
+    march of :func:`bounce.flight.first_contact` runs on the polynomial.
     """
     xi0 = eta - g
     z1 = a
     z2 = -xi0 - 2.0 * mu * z1
     z3 = -z1 - 2.0 * mu * z2
-    B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
-    s1 = 2.0 * u / B  # first safe step from (x, v) = (0, u)
-    T = 1.25 * s1
+    # window from a cheap over-estimate of the first safe step (B >= g + |z2|):
+    # the degree choice then does not wait for the square root in B
+    T = 2.5 * u / (g + abs(z2))
     q = rho * T
     if q > 1.0:
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -71,34 +85,53 @@ def short_flight(u, a, eta, g, mu, rho, d):
         if K > MAX_DEGREE:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0
         term *= q * INV_FACT_RATIO[K + 1]
-    # coefficients d_k = z_k / k!, k = 1..K+1 (K+1 for xi'(t) to degree K)
-    d[0] = z1
-    d[1] = 0.5 * z2
-    d[2] = z3 * INV_FACT[3]
+    # d_k = z_k / k! for k = 2..K+1 (K+1 for xi'(t) to degree K), stored at d[k]
+    d[2] = 0.5 * z2
+    d[3] = z3 * INV_FACT[3]
     zkm1, zk = z2, z3
     for k in range(4, K + 2):
         zkp1 = -zkm1 - 2.0 * mu * zk
-        d[k - 1] = zkp1 * INV_FACT[k]
+        d[k] = zkp1 * INV_FACT[k]
         zkm1, zk = zk, zkp1
-    # x(t) = t * P(t),  P = u - (g/2 + d2) t - d3 t^2 - ... - dK t^(K-1)
-    t = s1
+    B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
+    A0 = -g - z2
+    disc = 0.25 * A0 * A0 + (2.0 / 3.0) * z3 * u  # J0 = -z3
+    if A0 < 0.0 and disc > 0.0:
+        t = 2.0 * u / (math.sqrt(disc) - 0.5 * A0)
+        for _ in range(4):  # Newton from t_p, each iterate certified as above
+            if not 0.0 < t <= T:
+                break
+            Dn, Dpn = _horner(t, K, d)
+            tt = t * t
+            x = u * t - (0.5 * g + Dn) * tt
+            v = u - (g + Dpn) * t
+            scale = u * t + (0.5 * g + abs(Dn)) * tt
+            if not v < 0.0:
+                break
+            dt = -x / v
+            # (ii), then (i) with the backward range shortened by 2|dt| when x_p < 0
+            if B * dt * dt <= 8.0 * EPS * scale:
+                if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - v):
+                    return _finish(t, dt, u, a, g, mu, xi0, Dn, Dpn, scale)
+                break
+            t += dt
+    # general march from the first safe step
+    t = 2.0 * u / B
+    if t > T:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0
     for _ in range(64):
-        # Horner for P and P'
-        p = -d[K - 1]
-        dp = 0.0
-        for k in range(K - 1, 2, -1):
-            dp = dp * t + p
-            p = p * t - d[k - 1]
-        dp = dp * t + p
-        p = p * t - (0.5 * g + d[1])
-        dp = dp * t + p
-        p = p * t + u
-        x = t * p
-        v = p + t * dp
-        scale = u * t + (0.5 * g + abs(d[1])) * t * t + abs(d[2]) * t * t * t
+        Dn, Dpn = _horner(t, K, d)
+        tt = t * t
+        x = u * t - (0.5 * g + Dn) * tt
+        v = u - (g + Dpn) * t
+        scale = u * t + (0.5 * g + abs(Dn)) * tt
         if x <= 4.0 * EPS * scale:
             break
-        s = safe_step(x, v, B)
+        if v < 0.0:
+            # one-division lower bound of the safe step: sqrt(v^2 + 2Bx) <= |v| + Bx/|v|
+            s = 2.0 * x * -v / (2.0 * v * v + B * x)
+        else:
+            s = safe_step(x, v, B)
         if t + s > T:
             return HANDOVER, t, 0.0, 0.0, 0.0, 0.0
         if t + s == t:
@@ -106,15 +139,31 @@ def short_flight(u, a, eta, g, mu, rho, d):
         t += s
     else:
         return HANDOVER, t, 0.0, 0.0, 0.0, 0.0
-    if v < 0.0:
-        t -= x / v  # Newton polish at the rounding level
-    # xi(t) - xi0 = sum d_k t^k and xi'(t) - a = sum k d_k t^(k-1), k = 1..K+1
-    dxi = d[K]
-    dxid = (K + 1) * d[K]
+    return _finish(t, -x / v if v < 0.0 else 0.0, u, a, g, mu, xi0, Dn, Dpn, scale)
+
+
+@njit(cache=True)
+def _horner(t, K, d):
+    """D/t^2 = d2 + d3 t + ... + d_{K+1} t^(K-1) and D'/t = 2 d2 + 3 d3 t + ..."""
+    Dn = d[K + 1]
+    Dpn = (K + 1) * d[K + 1]
     for k in range(K, 1, -1):
-        dxi = dxi * t + d[k - 1]
-        dxid = dxid * t + k * d[k - 1]
-    dxi = (dxi * t + z1) * t
-    dxid *= t
-    v = u - g * t - dxid  # x' = psi' - xi' = (u + a - g t) - xi'
-    return FOUND, t, v, scale, dxi, z1 + dxid
+        Dn = Dn * t + d[k]
+        Dpn = Dpn * t + k * d[k]
+    return Dn, Dpn
+
+
+@njit(cache=True)
+def _finish(t, dt, u, a, g, mu, xi0, Dn, Dpn, scale):
+    """The contact at t + dt (dt at the rounding level): first-order update of D, D'.
+
+    Returns what :func:`short_flight` returns: x' = u - g t - D', xi - xi0 = a t + D,
+    xi' = a + D'.
+    """
+    D = Dn * t * t
+    Dp = Dpn * t
+    xidd = -(xi0 + a * t + D) - 2.0 * mu * (a + Dp)  # xi'' = -xi - 2 mu xi'
+    t += dt
+    D += Dp * dt  # (D)' = D'
+    Dp += xidd * dt  # (D')' = xi''
+    return FOUND, t, u - g * t - Dp, scale, a * t + D, a + Dp

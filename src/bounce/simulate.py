@@ -115,9 +115,10 @@ def simulate(
             f"root finder did not converge after event {n} (t = {t_end!r}); "
             "please report the parameters and initial state"
         )
-    t, tau, u, a, eta, e = (arr[:n].copy() for arr in out)
+    # views when the buffers are full (no 50 MB copy at 1e6 events), compact copies otherwise
+    t, tau, u, a, eta, e = (arr if n == max_events else arr[:n].copy() for arr in out)
     return Trajectory(
         params=params, initial=initial, t=t, tau=tau, xdot=u, xidot=a, eta=eta,
-        energy_excess=e, kind=kind[:n].copy(), stop_reason=STOP_NAMES[stop], t_end=t_end,
+        energy_excess=e, kind=kind if n == max_events else kind[:n].copy(), stop_reason=STOP_NAMES[stop], t_end=t_end,
         settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop},
     )
