@@ -1,0 +1,61 @@
+"""One small interface for every way of simulating the drop (speed-vs-accuracy study).
+
+A method module defines ``METHOD = MethodSpec(name, run, settings_doc)``; its
+contract:
+
+1. ``run(params, initial, setting, *, max_events, t_max, sample_times) ->
+   MethodResult``.  ``setting`` is a dict of the method's knobs (tolerance,
+   step, stiffness, ...); ``initial`` a :class:`bounce.model.State`.
+2. It reports contacts as it sees them: ``t`` the impact times (for soft-contact
+   methods: the start of each contact), ``xdot`` the lower-mass speed just after
+   (NaN where the method has no such notion), and, when ``sample_times`` is
+   given, ``y`` sampled there (NaN after the method stopped).
+3. It never raises on numerical failure: it stops and says how in ``failure``
+   (one of FAILURES) with the index of the impact where it happened.
+4. ``cpu_time`` is the process time of the run itself (no JIT compile: warm up
+   before timing).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+#: how a method can fail (the stability map's categories)
+FAILURES = (
+    "",  # ran to max_events / t_max
+    "missed_impact",  # stepped over a dip below the floor (an impact the exact solver has)
+    "fell_through",  # x < -tolerance: the lower mass went through the floor
+    "stall",  # zero-length flights: event location stuck at the floor
+    "energy_gain",  # E - E_m rose by more than rounding
+    "collapse",  # accumulation of impacts in finite time (inelastic collapse)
+    "endless_contact",  # a contact that never ends (soft floor / time-stepping stuck)
+    "budget",  # stopped by its CPU-time budget
+)
+
+
+@dataclass(frozen=True)
+class MethodResult:
+    method: str
+    setting: dict
+    t: np.ndarray
+    xdot: np.ndarray
+    cpu_time: float
+    failure: str = ""
+    failure_index: int = -1
+    t_end: float = float("nan")
+    y: np.ndarray | None = None
+    extra: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.failure not in FAILURES:
+            raise ValueError(f"failure must be one of {FAILURES}, got {self.failure!r}")
+
+
+@dataclass(frozen=True)
+class MethodSpec:
+    name: str
+    run: Callable[..., MethodResult]
+    settings_doc: str = ""
