@@ -4,7 +4,7 @@ Bouncing Ball", from config/config.yaml, through netCDF datasets.
     snakemake --cores 2                                   # full pipeline -> results/
     snakemake --cores 2 --configfile config/ci.yaml       # the CI-sized run of the same DAG
 
-Stages (one file each under workflow/rules/): simulate -> sticky -> figures.
+Stages (one file each under workflow/rules/): simulate -> sticky -> figures -> checks -> report.
 """
 
 import json
@@ -26,6 +26,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/sticky.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/checks.smk"
 include: "workflow/rules/docs.smk"
 
 
@@ -35,4 +36,6 @@ rule all:
         figure_files(),
         "results/data/sticky-convergence.nc",
         "results/data/sticky-inference.nc",
+        "results/report/validation.md",
+        "results/report/validation.html",
     default_target: True

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 from .io import read_dataset, write_netcdf
 
@@ -38,6 +39,28 @@ def _figure(args) -> None:
     FIGURES[args.name]([read_dataset(p) for p in args.inputs], args.spec, args.out)
 
 
+def _check(args) -> None:
+    """Run one validation check: its dataset (numbers + verdicts) and its figure."""
+    from .checks import registry
+
+    check = registry()[args.name]
+    ds = check.run(args.spec, [read_dataset(p) for p in args.inputs])
+    ds.attrs.setdefault("check", args.name)
+    write_netcdf(ds, args.out[0])
+    check.plot(ds, args.spec, args.out[1:])
+
+
+def _report(args) -> None:
+    """Gather every check into results/report/validation.{md,html}."""
+    from . import __version__
+    from .io import git_info
+    from .report import write
+
+    figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
+    meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
+    write(args.inputs, figures, args.out[0], args.out[1], args.spec.get("groups", {}), meta)
+
+
 def _thumbnails(args) -> None:
     from .figures.common import thumbnail
 
@@ -50,6 +73,8 @@ TASKS = {
     "sticky-inference": _sticky_inference,
     "sticky-convergence": _sticky_convergence,
     "figure": _figure,
+    "check": _check,
+    "report": _report,
     "thumbnails": _thumbnails,
 }
 

@@ -43,5 +43,8 @@ FIGURES["energy-decay"] = (["results/data/asymptotic-underdamped.nc", "results/d
 FIGURES["asymptotic-laws"] = (["results/data/asymptotic-underdamped.nc", "results/data/asymptotic-overdamped.nc"], {})
 
 
+CHECKS = sorted(config.get("checks", {}))
+
+
 def figure_files():
     return [f"results/figures/fig-{name}.{ext}" for name in FIGURES for ext in ("png", "pdf")]

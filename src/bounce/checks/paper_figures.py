@@ -1,0 +1,107 @@
+"""What the paper says it sees in figs. rigid-fall and very_rigid_poincare(_magni), measured.
+
+* fig. rigid-fall (section 8.1): "a sudden drop of the maximum height reached by the
+  mechanical system between the fourth and the sixth macroscopic flight";
+  macroscopic flights are those longer than T_xi = pi / sqrt(1 - mu^2) (same section).
+* fig. very_rigid_poincare: early contacts are double impacts, "whose signature is
+  the alternation of negative and positive values of ydot" (zig-zag).
+* fig. very_rigid_poincare_magni: late contacts spiral in towards (0, 0, 0): y - y_eq
+  and ydot oscillate with a decaying amplitude.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..figures.common import WIDTH, plt, save
+from ..io import sample_dataset
+from .base import Check, Verdict, judge, verdict_dataset
+
+
+def _var(value, long_name):
+    return xr.DataArray(value, attrs={"long_name": long_name, "units": "1"})
+
+
+def apex_heights(ds, samples_per_flight: int, factor: float) -> tuple[np.ndarray, np.ndarray]:
+    """Start times and maximum y of the macroscopic flights (tau > factor T_xi) of a trajectory dataset.
+
+    The paper's boundary is T_xi itself, but the flights inside a double impact last
+    about T_xi too (3.0-3.2 for mu = 0.01, T_xi = 3.14), so a factor > 1 separates them.
+    """
+    mu = float(ds.attrs["mu"])
+    t_xi = factor * np.pi / np.sqrt(1.0 - mu * mu)
+    t, tau = ds["t"].values, ds["tau"].values
+    starts, peaks = [], []
+    for k in range(t.size - 1):
+        if tau[k + 1] > t_xi:  # the flight after event k ends at event k + 1
+            grid = np.linspace(t[k], t[k + 1], samples_per_flight)
+            starts.append(t[k])
+            peaks.append(np.nanmax(sample_dataset(ds, grid)["y"]))
+    return np.array(starts), np.array(peaks)
+
+
+def run(spec: dict, inputs: list[xr.Dataset]) -> xr.Dataset:
+    fall, contacts = inputs
+    lo, hi = spec["drop_between"]
+    starts, peaks = apex_heights(fall, int(spec["samples_per_flight"]), float(spec["macroscopic_factor"]))
+    ratios = peaks[1:] / peaks[:-1]
+    k = int(np.argmin(ratios)) + 1  # the drop is from macroscopic flight k to k + 1 (1-based)
+    n_zig = int(spec["zigzag_contacts"])
+    ydot = contacts["ydot"].values
+    alternation = float(np.mean(np.sign(ydot[1:n_zig]) != np.sign(ydot[: n_zig - 1])))
+    a, b = spec["spiral_contacts"]
+    ydev = contacts["y_minus_yeq"].values[a:b]
+    sign_changes = int(np.count_nonzero(np.diff(np.sign(ydev)) != 0))
+    third = max(ydev.size // 3, 1)
+    amp_first, amp_last = float(np.max(np.abs(ydev[:third]))), float(np.max(np.abs(ydev[-third:])))
+    verdicts = [
+        Verdict("sudden drop of the maximum height between the 4th and the 6th macroscopic flight",
+                "fig. rigid-fall, section 8.1",
+                f"max y per flight longer than {spec['macroscopic_factor']} T_xi; the largest relative drop "
+                "between consecutive ones",
+                f"drop from flight k to k+1 with {lo} <= k, k+1 <= {hi}",
+                f"largest drop from flight {k} to {k + 1} (ratio {ratios[k - 1]:.3f}); heights "
+                + ", ".join(f"{h:.2f}" for h in peaks[: k + 2]),
+                "exact (flight indices are integers)", judge(lo <= k and k + 1 <= hi)),
+        Verdict("early contacts are double impacts: ydot alternates in sign (zig-zag)",
+                "fig. very_rigid_poincare, section 8.1",
+                f"fraction of sign alternations of Ydot_n over the first {n_zig} contacts",
+                ">= 0.9", f"{alternation:.3f}", "0.9: a single-impact phase would alternate at most half the time",
+                judge(alternation >= 0.9)),
+        Verdict("late contacts spiral towards (0,0,0): damped oscillation of Y_n - y_eq",
+                "fig. very_rigid_poincare_magni, section 8.1",
+                f"sign changes of Y_n - y_eq and its amplitude, first vs last third of contacts {a}-{b}",
+                ">= 4 sign changes, amplitude decreasing",
+                f"{sign_changes} sign changes; amplitude {amp_first:.2e} -> {amp_last:.2e}",
+                "qualitative claim: any oscillation (>= 4 sign changes) with decaying envelope",
+                judge(sign_changes >= 4 and amp_last < amp_first)),
+    ]
+    data = xr.Dataset({
+        "apex_time": ("flight", starts, {"long_name": "start of the macroscopic flight", "units": "1"}),
+        "apex_height": ("flight", peaks, {"long_name": "maximum height of the upper mass in the flight", "units": "1"}),
+        "largest_drop_flight": _var(k, "macroscopic flight after which the largest height drop occurs"),
+        "zigzag_fraction": _var(alternation, "fraction of sign alternations of Ydot_n, early contacts"),
+        "spiral_sign_changes": _var(sign_changes, "sign changes of Y_n - y_eq, late contacts"),
+    })
+    data.attrs.update(gamma=float(fall.attrs["gamma"]), mu=float(fall.attrs["mu"]))
+    return verdict_dataset(verdicts, data, title="What the paper sees in figs. rigid-fall and very_rigid_poincare")
+
+
+def plot(ds, spec, outputs) -> None:
+    fig, ax = plt.subplots(figsize=(WIDTH, 2.8))
+    h = ds["apex_height"].values
+    k = int(ds["largest_drop_flight"])
+    idx = np.arange(1, h.size + 1)
+    ax.plot(idx, h, "o-", ms=3)
+    ax.plot([k, k + 1], h[[k - 1, k]], "r-", lw=2, label=f"largest drop: flight {k} -> {k + 1}")
+    ax.axvspan(*spec["drop_between"], color="0.9", label="paper: between the 4th and 6th flight")
+    ax.set_xlabel("macroscopic flight (longer than %g $T_\\xi$)" % spec["macroscopic_factor"])
+    ax.set_ylabel("max $y$ in the flight  [$L$]")
+    ax.set_title("check paper-figures: apex heights of fig. rigid-fall ($\\gamma=\\mu=%g$)" % ds.attrs["gamma"])
+    ax.legend()
+    save(fig, outputs)
+
+
+CHECK = Check(name="paper-figures", run=run, plot=plot,
+              title="What the paper sees in figs. rigid-fall and very_rigid_poincare")

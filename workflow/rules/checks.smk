@@ -1,0 +1,39 @@
+"""Stage 4: every checkable claim of the paper as a check -> results/checks/<name>.nc (numbers and
+verdicts) + fig-<name>.{png,pdf}; then the validation report."""
+
+
+rule check:
+    """Run one validation check of config `checks` on the scene datasets it names."""
+    input:
+        lambda w: [f"results/data/{scene}.nc" for scene in config["checks"][w.name].get("inputs", [])],
+    output:
+        nc="results/checks/{name}.nc",
+        png="results/checks/fig-{name}.png",
+        pdf="results/checks/fig-{name}.pdf",
+    params:
+        spec=lambda w: as_json(config["checks"][w.name]),
+    log:
+        "results/logs/checks/{name}.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in CHECKS),
+    shell:
+        "python -m bounce.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
+
+
+rule report:
+    """The validation report: a table of every claim with its verdict, per-figure and per-theorem verdicts,
+    a section per check, the errata."""
+    input:
+        nc=[f"results/checks/{name}.nc" for name in CHECKS],
+        png=[f"results/checks/fig-{name}.png" for name in CHECKS],
+    output:
+        md="results/report/validation.md",
+        html="results/report/validation.html",
+    params:
+        spec=as_json(config["report"]),
+    log:
+        "results/logs/report.log",
+    shell:
+        "python -m bounce.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.html} "
+        "> {log} 2>&1"
