@@ -3,6 +3,7 @@ Bouncing Ball", from config/config.yaml, through netCDF datasets.
 
     snakemake --cores 2                                   # full pipeline -> results/
     snakemake --cores 2 --configfile config/ci.yaml       # the CI-sized run of the same DAG
+    snakemake --report results/report/report.html         # browsable HTML report, every figure + caption
 
 Stages (one file each under workflow/rules/): simulate -> sticky -> figures -> checks -> report.
 """
@@ -17,6 +18,9 @@ min_version("8.0")
 
 
 configfile: Path(workflow.basedir) / "config" / "config.yaml"
+
+
+report: "workflow/report/workflow.rst"
 
 
 validate(config, Path(workflow.basedir) / "config" / "schema.yaml")

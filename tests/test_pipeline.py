@@ -70,6 +70,18 @@ def test_sticky_study_matches_the_paper(ci_results):
         assert slope > 1.0, f"RMS difference should fall faster than linearly in eps (paper, section 8.2): {slope}"
 
 
+def test_validation_report(ci_results):
+    """Every configured check has rows in the report; the snakemake HTML report builds."""
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    md = (ci_results / "report" / "validation.md").read_text()
+    for name in config["checks"]:
+        assert f"(`{name}`)" in md, f"check {name} missing from the report"
+    assert re.search(r"\*\*\d+ reproduced, \d+ not reproduced, \d+ not checkable\*\*", md)
+    html = ci_results.parent / "report.html"
+    _snakemake(ci_results.parent, "--configfile", str(ROOT / "config" / "ci.yaml"), "--report", str(html))
+    assert html.stat().st_size > 100_000
+
+
 def test_rerun_does_nothing(ci_results):
     proc = _snakemake(ci_results.parent, "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
     assert "Nothing to be done" in proc.stdout + proc.stderr

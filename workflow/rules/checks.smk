@@ -8,7 +8,7 @@ rule check:
         lambda w: [f"results/data/{scene}.nc" for scene in config["checks"][w.name].get("inputs", [])],
     output:
         nc="results/checks/{name}.nc",
-        png="results/checks/fig-{name}.png",
+        png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),
         pdf="results/checks/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(config["checks"][w.name]),
@@ -29,7 +29,7 @@ rule report:
         png=[f"results/checks/fig-{name}.png" for name in CHECKS],
     output:
         md="results/report/validation.md",
-        html="results/report/validation.html",
+        html=report("results/report/validation.html", caption="../report/validation.rst", category="Validation report"),
     params:
         spec=as_json(config["report"]),
     log:

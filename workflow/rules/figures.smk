@@ -6,7 +6,7 @@ rule figure:
     input:
         lambda w: FIGURES[w.name][0],
     output:
-        png="results/figures/fig-{name}.png",
+        png=report("results/figures/fig-{name}.png", caption="../report/figure.rst", category="Figures of the paper"),
         pdf="results/figures/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(FIGURES[w.name][1]),
