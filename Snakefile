@@ -5,7 +5,8 @@ Bouncing Ball", from config/config.yaml, through netCDF datasets.
     snakemake --cores 2 --configfile config/ci.yaml       # the CI-sized run of the same DAG
     snakemake --report results/report/report.html         # browsable HTML report, every figure + caption
 
-Stages (one file each under workflow/rules/): simulate -> sticky -> figures -> checks -> report.
+Stages (one file each under workflow/rules/): simulate -> sticky -> figures -> checks -> report;
+methods (speed against accuracy).
 """
 
 import json
@@ -31,6 +32,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/sticky.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/checks.smk"
+include: "workflow/rules/methods.smk"
 include: "workflow/rules/docs.smk"
 
 
@@ -42,4 +44,5 @@ rule all:
         "results/data/sticky-inference.nc",
         "results/report/validation.md",
         "results/report/validation.html",
+        [f"results/methods/{name}.nc" for name in STUDIES],
     default_target: True

@@ -61,6 +61,26 @@ def _report(args) -> None:
     write(args.inputs, figures, args.out[0], args.out[1], args.spec.get("groups", {}), meta)
 
 
+#: speed-vs-accuracy studies: name -> (module, dataset builder, plot function)
+STUDIES = {
+    "horizon": ("bounce.methods.horizon", "horizon_dataset", "plot_horizon"),
+    "contact-switch": ("bounce.methods.contact_switch", "switch_study", "plot_switch_study"),
+    "reduced-vs-dimer": ("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer"),
+    "least-model": ("bounce.methods.reduced_compare", "least_model", "plot_least_model"),
+}
+
+
+def _study(args) -> None:
+    """One study of bounce.methods: its dataset and its figure."""
+    import importlib
+
+    module, build, plot = STUDIES[args.name]
+    module = importlib.import_module(module)
+    ds = getattr(module, build)(args.spec)
+    write_netcdf(ds, args.out[0])
+    getattr(module, plot)(ds, args.spec, args.out[1:])
+
+
 def _thumbnails(args) -> None:
     from .figures.common import thumbnail
 
@@ -75,6 +95,7 @@ TASKS = {
     "figure": _figure,
     "check": _check,
     "report": _report,
+    "study": _study,
     "thumbnails": _thumbnails,
 }
 

@@ -45,6 +45,18 @@ FIGURES["asymptotic-laws"] = (["results/data/asymptotic-underdamped.nc", "result
 
 CHECKS = sorted(config.get("checks", {}))
 
+# speed-vs-accuracy studies: name -> config slice
+REDUCED = config["reduced"]
+STUDIES = {
+    "horizon": REDUCED["horizon"],
+    "contact-switch": REDUCED["switch"],
+    "reduced-vs-dimer": REDUCED["vs_dimer"],
+    "least-model": dict(
+        REDUCED["least_model"],
+        scene_specs={k: config["scenes"][k] for k in REDUCED["least_model"]["scenes"]},
+    ),
+}
+
 
 def figure_files():
     return [f"results/figures/fig-{name}.{ext}" for name in FIGURES for ext in ("png", "pdf")]

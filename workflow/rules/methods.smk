@@ -1,0 +1,18 @@
+"""Stage 5: speed against accuracy -> results/methods/<study>.nc + fig-<study>.{png,pdf}."""
+
+
+rule study:
+    """One study of bounce.methods (predictability horizon, contact switch, reduced models, least model)."""
+    output:
+        nc="results/methods/{name}.nc",
+        png=report("results/methods/fig-{name}.png", caption="../report/study.rst", category="Speed against accuracy"),
+        pdf="results/methods/fig-{name}.pdf",
+    params:
+        spec=lambda w: as_json(STUDIES[w.name]),
+    log:
+        "results/logs/methods/{name}.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in STUDIES),
+    shell:
+        "python -m bounce.tasks study --name {wildcards.name} --spec {params.spec:q} "
+        "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
