@@ -110,11 +110,20 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
     es0 = SQRT2 * a
     G0 = eta + 2.0 * mu * a
     Gs0 = es0 * (1.0 - 2.0 * mu * mu) - SQRT2 * mu * eta
-    x0 = max(0.0, 2.0 * gamma - G0)  # F(0) = 0 up to rounding: clamp at the floor
+    # F(0) and F'(0) within rounding of zero are zero (approximation at the rounding level)
+    x0 = max(0.0, 2.0 * gamma - G0)
+    if x0 <= 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma):
+        x0 = 0.0
+    if abs(Gs0) <= 8.0 * EPS * (abs(es0) * (1.0 + 2.0 * mu * mu) + SQRT2 * mu * abs(eta)):
+        Gs0 = 0.0
+    s_start = 0.0
     if x0 == 0.0 and Gs0 >= 0.0:
-        return FOUND, 0.0, a, eta
+        if Gs0 > 0.0:
+            return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
+        # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
+        s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
     status, s, _, _, omc, _, _, _, S, Sd = first_contact(
-        0.0, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
+        s_start, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
     )
     if status != FOUND:
         return status, s * SQRT2, a, eta
@@ -136,7 +145,8 @@ def _at_rest_is_sticky(a, eta, gamma, mu):
         return False
     if F < -noise:
         return True
-    return Fp <= 0.0
+    # F = 0: stays if F' < 0, or F' = 0 too (then F'' = -gamma < 0, paper after eq. cond_di_distacco)
+    return Fp <= 8.0 * EPS * (abs(a) * (1.0 + 2.0 * mu * mu) + mu * (abs(eta) + 1.0))
 
 
 @njit(cache=True)
@@ -220,11 +230,14 @@ def run_events(
                 if status != FOUND:
                     stop = STOP_TIME if status == HORIZON else STOP_FAILED
                     break
-                dxi = (gamma - eta) * omc + a * S  # xi(tau) - xi(0)
+                # xi(tau) + gamma as eta c + a S + gamma (1 - c): for long flights (1 - c = O(1)) the
+                # form eta + (xi(tau) - xi(0)) of short flights would cancel eta against eta (1 - c)
+                eta_t = eta * c + a * S + gamma * omc
                 xid_t = (gamma - eta) * S + a * Sd  # xi'(tau)
+            else:
+                eta_t = eta + dxi  # short flight: xi(tau) + gamma from the small displacement
             x0 = 0.0
             t_start = 0.0
-            eta_t = eta + dxi  # xi(tau) + gamma
             # x'' = -gamma - xi'' and x''' = -xi''' just before the contact
             xidd = -(eta_t - gamma) - 2.0 * mu * xid_t
             acc = -gamma - xidd

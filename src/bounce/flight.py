@@ -159,17 +159,10 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     else:
         return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd
     if v < 0.0:
-        # Newton polish; x is at the rounding level, so dt is too
-        dt = -x / v
-        t += dt
-        Sdd = -2.0 * mu * Sd - S  # S'' from the oscillator equation
-        omc += S * dt  # (1 - c)' = S
-        tms += (1.0 - Sd) * dt
-        omsd -= Sdd * dt
-        c -= S * dt
-        S += Sd * dt
-        Sd += Sdd * dt
-        v += (-g + xi0 * Sd - a * Sdd) * dt  # x'' = -g - xi'', xi'' = -xi0 S' + a S''
+        # Newton polish (x is at the rounding level); re-evaluated at the polished time, since
+        # near a tangency the step is not negligible (a first-order update would bias x')
+        t = t - x / v
+        x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
     return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd
 
 

@@ -139,7 +139,11 @@ def short_flight(u, a, eta, g, mu, rho, d):
         t += s
     else:
         return HANDOVER, t, 0.0, 0.0, 0.0, 0.0
-    return _finish(t, -x / v if v < 0.0 else 0.0, u, a, g, mu, xi0, Dn, Dpn, scale)
+    if v < 0.0:
+        # Newton polish, re-evaluated (near a tangency the step is not negligible)
+        t -= x / v
+        Dn, Dpn = _horner(t, K, d)
+    return FOUND, t, u - (g + Dpn) * t, scale, (a + Dn * t) * t, a + Dpn * t
 
 
 @njit(cache=True)
@@ -155,7 +159,8 @@ def _horner(t, K, d):
 
 @njit(cache=True)
 def _finish(t, dt, u, a, g, mu, xi0, Dn, Dpn, scale):
-    """The contact at t + dt (dt at the rounding level): first-order update of D, D'.
+    """The contact at t + dt (certified: B dt^2 below the rounding level), by a first-order
+    update of D, D' (the neglected terms are O(dt^2), below rounding too).
 
     Returns what :func:`short_flight` returns: x' = u - g t - D', xi - xi0 = a t + D,
     xi' = a + D'.
