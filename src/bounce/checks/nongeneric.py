@@ -1,0 +1,590 @@
+"""Theorem contact-non-generic (paper sections 2, 3 and 7): zero-speed contacts are non-generic.
+
+Three measurements, each against the event classifier of :mod:`bounce.events`:
+
+1. **Monte-Carlo.**  Random initial conditions (a seed in the spec) over many
+   energies E - E_m = gamma^2 * 10^U and dampings mu in three regimes (under-,
+   critically, over-damped), each run for ``events`` events.  Expected: no
+   ``sticky_start`` and no ``grazing`` at all.  For every impact n the arrival
+   speed |Xdot_n| is compared with two scales: the launch speed of the flight
+   that ends at it, v_ref = max(|Xdot_{n-1}|, |Xdot_n|) (|xdot(0)| for the first
+   flight), and the classifier's rounding window v_tol (below).  The low tail of
+   the ratio's distribution, N(|Xdot_n|/v_ref < r) ~ r^p, is fitted: p > 0 means
+   no atom at zero speed.  (Asymptotically, near a grazing a dip of depth d below
+   the floor gives a speed ~ sqrt(d), so p -> 2; the sampled ratios, >= 1e-2, are
+   not yet in that tail and give a larger p.)  Extrapolating the margin
+   |Xdot_n|/v_tol's tail linearly (p = 1, an upper estimate for any p >= 1) to 1
+   estimates how many contacts of the whole sample were expected inside the
+   window (<< 1: the expected anomaly count is 0).
+
+2. **Constructed anomalous contacts.**  A state on the sticky line of eq.
+   sticky-cond-Y (x = xdot = 0, Y = 1 + 2 gamma - 2 mu Ydot, Ydot < 4 mu gamma,
+   i.e. alpha = 4 gamma mu - Ydot > 0) is evolved *backward* in time by the free
+   flight (own closed form in mpmath, valid for t < 0) for a short T; near the
+   onset x(t) = -alpha t^3/12 - gamma t^4/24 + ..., positive on (-T, 0) for
+   T < 2 alpha/gamma (checked on a grid).  Forward simulation from that state must
+   give ``sticky_start`` at t = T.  Likewise a state with x = xdot = 0, x'' > 0
+   (eq. swishes) must give ``grazing``.
+
+3. **Where the classifier switches.**  The same construction with an arrival
+   speed v (pre-contact xdot = -v) on the sticky line: ``sticky_start`` for
+   v << v_tol, ``impact`` for v >> v_tol.
+
+The classifier (events.py docstring): x is known to xn = 4 eps scale (scale = sum
+of the magnitudes of the terms of eq. (F)); a contact is tangential if
+v^2 <= 32 |x''| xn or |v|^3 <= 288 |x'''| xn^2, i.e. v <= v_tol = max(sqrt(32|x''|xn),
+(288 |x'''| xn^2)^(1/3)); it hides the contact time within delta2 = sqrt(2 xn/|x''|),
+delta3 = (6 xn/|x'''|)^(1/3).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+from mpmath import mp, mpf
+from numba import njit
+
+from ..events import KIND_NAMES
+from ..flight import EPS, gap
+from ..model import Deviations, Parameters
+from ..oscillator import make_oscillator
+from ..simulate import simulate
+from .base import NOT_CHECKABLE, Check, Verdict, judge, verdict_dataset
+
+IMPACT, GRAZING, STICKY_START, DETACH = 0, 1, 2, 3
+NAME = "contact-non-generic"
+
+
+def _v(dims, values, long_name, units="1", **extra):
+    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
+
+
+# --------------------------------------------------------------------------- shared helpers
+
+def sample_parameters(rng, n: int, spec: dict):
+    """gamma log-uniform, mu cycling through under- / critically / over-damped, E - E_m = gamma^2 10^U."""
+    g_lo, g_hi = spec.get("gamma", [1e-4, 0.2])
+    gamma = 10.0 ** rng.uniform(math.log10(g_lo), math.log10(g_hi), n)
+    u_lo, u_hi = spec.get("mu_under", [1e-3, 0.95])
+    o_lo, o_hi = spec.get("mu_over", [1.05, 5.0])
+    regime = np.arange(n) % 3
+    mu = np.where(regime == 0, 10.0 ** rng.uniform(math.log10(u_lo), math.log10(u_hi), n),
+                  np.where(regime == 1, 1.0, 10.0 ** rng.uniform(math.log10(o_lo), math.log10(o_hi), n)))
+    return gamma, mu, regime
+
+
+def sample_initial(rng, n: int, spec: dict):
+    """Random states with prescribed E - E_m: (a, psi', eta, sqrt(2 gamma x)) = sqrt(2 dE) * (unit vector)."""
+    gamma, mu, regime = sample_parameters(rng, n, spec)
+    e_lo, e_hi = spec.get("energy_over_gamma2", [0.1, 1000.0])
+    dE = gamma**2 * 10.0 ** rng.uniform(math.log10(e_lo), math.log10(e_hi), n)
+    w = rng.normal(size=(n, 4))
+    w /= np.linalg.norm(w, axis=1)[:, None]
+    r = np.sqrt(2.0 * dE)
+    a, psid, eta = r * w[:, 0], r * w[:, 1], r * w[:, 2]
+    x = dE * w[:, 3] ** 2 / gamma  # gamma x = dE w3^2
+    return gamma, mu, regime, dE, x, psid - a, a, eta
+
+
+def _fundamental_mp(mu, t):
+    """c, S, S' of xi'' + 2 mu xi' + xi = 0 at any real t (mpmath; own closed form)."""
+    mu, t = mpf(mu), mpf(t)
+    if mu == 1:
+        e = mp.exp(-t)
+        return (1 + t) * e, t * e, (1 - t) * e
+    k = mp.sqrt(mp.mpc(mu * mu - 1))
+    r1, r2 = -mu + k, -mu - k
+    e1, e2 = mp.exp(r1 * t), mp.exp(r2 * t)
+    c = (r1 * e2 - r2 * e1) / (r1 - r2)
+    S = (e1 - e2) / (r1 - r2)
+    Sd = (r1 * e1 - r2 * e2) / (r1 - r2)
+    return mp.re(c), mp.re(S), mp.re(Sd)
+
+
+def flight_mp(x, u, a, eta, gamma, mu, t):
+    """Free flight (eq. eq-motion-psi-xi, no floor) of (x, xdot, xi', eta) over a time t of either sign.
+
+    psi = x + xi, psi' = u + a, psi'' = -gamma; xi = eta - gamma follows the damped
+    oscillator.  Returns (x, xdot, xi', eta) as mpf at the working precision.
+    """
+    g = mpf(gamma)
+    xi0, xid0 = mpf(eta) - g, mpf(a)
+    psi0, psid0 = mpf(x) + xi0, mpf(u) + xid0
+    c, S, Sd = _fundamental_mp(mu, t)
+    t = mpf(t)
+    xi = xi0 * c + xid0 * S
+    xid = -xi0 * S + xid0 * Sd
+    psi = psi0 + psid0 * t - g * t * t / 2
+    psid = psid0 - g * t
+    return psi - xi, psid - xid, xid, xi + g
+
+
+def contact_derivatives(a_pre, eta, gamma, mu):
+    """x'' and x''' just before a contact (x = 0) from xi'(t-) and eta = xi + gamma."""
+    xidd = -(eta - gamma) - 2.0 * mu * a_pre
+    return -gamma - xidd, a_pre + 2.0 * mu * xidd
+
+
+def classifier_window(scale, acc, jerk):
+    """xn, v_tol, delta2, delta3 of the event classifier (events.py docstring)."""
+    xn = 4.0 * EPS * scale + 1e-300
+    v2 = math.sqrt(32.0 * abs(acc) * xn)
+    v3 = (288.0 * abs(jerk) * xn * xn) ** (1.0 / 3.0)
+    d2 = math.sqrt(2.0 * xn / abs(acc)) if acc != 0 else math.inf
+    d3 = (6.0 * xn / abs(jerk)) ** (1.0 / 3.0) if jerk != 0 else math.inf
+    return xn, max(v2, v3), d2, d3
+
+
+def construct_contact(gamma, mu, a_pre, eta, v, T, dps=40, n_check=24):
+    """A start state that reaches the contact (x = 0, xdot = -v, xi' = a_pre, eta) at t = T.
+
+    The contact state is evolved backward by T in mpmath; T is halved until x > 0 on
+    a grid of (-T, 0) (at most 30 times).  Returns (Deviations, T, exact contact
+    derivatives (acc, jerk), scale of eq. (F) at T).
+    """
+    with mp.workdps(dps):
+        for _ in range(30):
+            grid = [-T * (k + 1) / n_check for k in range(n_check)]
+            if all(flight_mp(0, -v, a_pre, eta, gamma, mu, s)[0] > 0 for s in grid):
+                break
+            T *= 0.5
+        else:
+            raise ValueError("could not find a backward flight that stays above the floor")
+        xs = flight_mp(0, -v, a_pre, eta, gamma, mu, -T)
+        start = Deviations(*[float(q) for q in xs])
+        acc, jerk = contact_derivatives(float(a_pre), float(eta), gamma, mu)
+    params, coefs = make_oscillator(mu)
+    scale = gap(T, start.x, start.xdot, start.xidot, start.eta, gamma, params, coefs)[2]
+    return start, T, acc, jerk, scale
+
+
+def sticky_contact(gamma, mu, alpha):
+    """(a, eta) of the sticky-line state with alpha = 4 gamma mu - Ydot (eq. sticky-cond-Y), as mpf."""
+    ydot = 4 * mpf(gamma) * mpf(mu) - mpf(alpha)
+    return ydot / 2, 2 * mpf(gamma) - mpf(mu) * ydot
+
+
+def hexs(*values) -> str:
+    return "(" + ", ".join(float(v).hex() for v in values) + ")"
+
+
+# --------------------------------------------------------------------------- Monte-Carlo kernel
+
+@njit(cache=True)
+def _contact_scales(x0, u0, a0, eta0, tau, u, a, eta, kind, gamma, mu, params, coefs, out_ref, out_margin):
+    """Per impact: launch-speed ratio |Xdot_n|/v_ref and classifier margin |Xdot_n|/v_tol."""
+    px, pu, pa, pe = x0, u0, a0, eta0
+    launch = abs(u0)
+    for n in range(tau.shape[0]):
+        if kind[n] != 0:
+            out_ref[n] = np.nan
+            out_margin[n] = np.nan
+        else:
+            _, _, scale, _, _, _, _, _, _ = gap(tau[n], px, pu, pa, pe, gamma, params, coefs)
+            v = abs(u[n])
+            ref = max(launch, v)
+            out_ref[n] = v / ref if ref > 0 else np.nan
+            xid_t = u[n] + a[n]  # xi'(t-) = psi'(t+)
+            xidd = -(eta[n] - gamma) - 2.0 * mu * xid_t
+            acc = -gamma - xidd
+            jerk = xid_t + 2.0 * mu * xidd
+            xn = 4.0 * 2.220446049250313e-16 * scale + 1e-300
+            vt = max(math.sqrt(32.0 * abs(acc) * xn), (288.0 * abs(jerk) * xn * xn) ** (1.0 / 3.0))
+            out_margin[n] = v / vt
+        px, pu, pa, pe = 0.0, u[n], a[n], eta[n]
+        launch = abs(u[n])
+
+
+def monte_carlo(spec: dict):
+    """Run the Monte-Carlo sample; per-sample summaries plus the pooled low tails."""
+    rng = np.random.default_rng(int(spec["seed"]))
+    n = int(spec["n_samples"])
+    events = int(spec["events"])
+    gamma, mu, regime, dE, x, u, a, eta = sample_initial(rng, n, spec)
+    counts = np.zeros((n, 4), dtype=np.int64)
+    min_ratio = np.full(n, np.nan)
+    min_ratio_at = np.full(n, -1, dtype=np.int64)
+    min_margin = np.full(n, np.nan)
+    min_margin_at = np.full(n, -1, dtype=np.int64)
+    pooled_ratio, pooled_margin = [], []
+    n_contacts = 0
+    for i in range(n):
+        p = Parameters(gamma[i], mu[i])
+        tr = simulate(p, Deviations(x[i], u[i], a[i], eta[i]), max_events=events)
+        counts[i] = np.bincount(tr.kind, minlength=4)[:4]
+        params, coefs = make_oscillator(mu[i])
+        ref = np.empty(len(tr))
+        mar = np.empty(len(tr))
+        _contact_scales(x[i], u[i], a[i], eta[i], tr.tau, tr.xdot, tr.xidot, tr.eta, tr.kind,
+                        gamma[i], mu[i], params, coefs, ref, mar)
+        ok = np.isfinite(ref)
+        n_contacts += int(ok.sum())
+        if ok.any():
+            j = int(np.nanargmin(ref))
+            min_ratio[i], min_ratio_at[i] = ref[j], j
+            j = int(np.nanargmin(mar))
+            min_margin[i], min_margin_at[i] = mar[j], j
+            k = int(spec.get("tail", 200))
+            pooled_ratio.append(np.sort(ref[ok])[:k])
+            pooled_margin.append(np.sort(mar[ok])[:k])
+    k = int(spec.get("tail", 200))
+    tail_ratio = np.sort(np.concatenate(pooled_ratio))[:k]
+    tail_margin = np.sort(np.concatenate(pooled_margin))[:k]
+    return dict(gamma=gamma, mu=mu, regime=regime, dE=dE, x=x, u=u, a=a, eta=eta, counts=counts,
+                min_ratio=min_ratio, min_ratio_at=min_ratio_at, min_margin=min_margin,
+                min_margin_at=min_margin_at, tail_ratio=tail_ratio, tail_margin=tail_margin,
+                n_contacts=n_contacts)
+
+
+def tail_exponent(tail: np.ndarray, lo: int, hi: int):
+    """Fit N(< r) = C r^p through the ranked smallest values r_(k), k = lo..hi (1-based); p, its std. error, C."""
+    k = np.arange(1, tail.size + 1)
+    sel = (k >= lo) & (k <= hi) & (tail > 0)
+    lx, ly = np.log(tail[sel]), np.log(k[sel])
+    A = np.vstack([lx, np.ones_like(lx)]).T
+    coef, res, *_ = np.linalg.lstsq(A, ly, rcond=None)
+    dof = max(lx.size - 2, 1)
+    cov = (float(res[0]) / dof if res.size else 0.0) * np.linalg.inv(A.T @ A)
+    return float(coef[0]), float(np.sqrt(cov[0, 0])), float(np.exp(coef[1]))
+
+
+# --------------------------------------------------------------------------- constructions
+
+def constructed(spec: dict, kind: str):
+    """Random sticky onsets (kind 'sticky') or grazings (kind 'grazing'), backward-evolved, simulated forward."""
+    rng = np.random.default_rng(int(spec["seed"]) + (1 if kind == "sticky" else 2))
+    n = int(spec["n_constructed"])
+    gamma, mu, _ = sample_parameters(rng, n, spec)
+    lo, hi = spec.get("alpha_over_gamma", [1e-3, 10.0])
+    size = gamma * 10.0 ** rng.uniform(math.log10(lo), math.log10(hi), n)  # alpha (sticky) or x'' (grazing)
+    frac = rng.uniform(0.05, 0.5, n)
+    t_cap = float(spec.get("T_max", 2.0))
+    rows = {k: np.empty(n) for k in ("T", "acc", "jerk", "scale", "window", "t_first", "x0")}
+    first_kind = np.empty(n, dtype=np.int8)
+    second_kind = np.full(n, -1, dtype=np.int8)
+    starts = []
+    for i in range(n):
+        g, m = float(gamma[i]), float(mu[i])
+        with mp.workdps(40):
+            if kind == "sticky":
+                a_pre, eta = sticky_contact(g, m, size[i])
+                T = frac[i] * min(2.0 * size[i] / g, t_cap)
+            else:
+                ydot = mpf(rng.uniform(-3.0, 3.0)) * g
+                a_pre = ydot / 2
+                eta = 2 * mpf(g) - 2 * mpf(m) * a_pre + mpf(size[i])  # x'' = eta + 2 mu a - 2 gamma = size
+                jerk = float(a_pre) + 2 * m * float(-(eta - g) - 2 * m * a_pre)
+                T = frac[i] * min(3.0 * size[i] / abs(jerk) if jerk > 0 else t_cap, t_cap)
+            start, T, acc, jerk, scale = construct_contact(g, m, a_pre, eta, 0, T)
+        _, _, d2, d3 = classifier_window(scale, acc, jerk)
+        tr = simulate(Parameters(g, m), start, max_events=2, t_max=T + 100.0)
+        rows["T"][i], rows["acc"][i], rows["jerk"][i], rows["scale"][i] = T, acc, jerk, scale
+        rows["window"][i] = min(d2, d3)
+        rows["x0"][i] = start.x
+        rows["t_first"][i] = tr.t[0] if len(tr) else np.nan
+        first_kind[i] = tr.kind[0] if len(tr) else -1
+        if len(tr) > 1:
+            second_kind[i] = tr.kind[1]
+        starts.append(start)
+    return dict(gamma=gamma, mu=mu, size=size, first_kind=first_kind, second_kind=second_kind, starts=starts, **rows)
+
+
+def speed_scan(spec: dict):
+    """Arrival speed v = ratio * v_tol on the sticky line: which kind does the classifier give?"""
+    g, m = spec.get("scan_gamma_mu", [0.01, 0.3])
+    alpha = float(spec.get("scan_alpha_over_gamma", 1.0)) * g
+    T = float(spec.get("scan_T", 0.5))
+    ratios = np.geomspace(*spec.get("scan_ratio", [1e-3, 1e3]), int(spec.get("scan_n", 25)))
+    with mp.workdps(40):
+        a_pre, eta = sticky_contact(g, m, alpha)
+        _, T, acc, jerk, scale = construct_contact(g, m, a_pre, eta, 0, T)
+    _, v_tol, _, _ = classifier_window(scale, acc, jerk)
+    kinds = np.empty(ratios.size, dtype=np.int8)
+    speeds = np.empty(ratios.size)
+    for i, r in enumerate(ratios):
+        with mp.workdps(40):
+            start, T_i, *_ = construct_contact(g, m, a_pre, eta, mpf(r * v_tol), T)
+        tr = simulate(Parameters(g, m), start, max_events=1, t_max=T_i + 10.0)
+        kinds[i] = tr.kind[0] if len(tr) else -1
+        speeds[i] = abs(tr.xdot[0]) if len(tr) else np.nan
+    return dict(ratios=ratios, kinds=kinds, speeds=speeds, v_tol=v_tol, gamma=g, mu=m, alpha=alpha, T=T,
+                acc=acc, jerk=jerk, scale=scale)
+
+
+# --------------------------------------------------------------------------- run
+
+def run(spec: dict, inputs=()) -> xr.Dataset:
+    mc = monte_carlo(spec)
+    sticky = constructed(spec, "sticky")
+    graze = constructed(spec, "grazing")
+    scan = speed_scan(spec)
+
+    n_sticky = int(mc["counts"][:, STICKY_START].sum())
+    n_graze = int(mc["counts"][:, GRAZING].sum())
+    n_ev = int(mc["counts"].sum())
+    lo, hi = spec.get("tail_fit", [5, 100])
+    p_ratio, p_ratio_err, _ = tail_exponent(mc["tail_ratio"], lo, hi)
+    p_margin, p_margin_err, c_margin = tail_exponent(mc["tail_margin"], lo, hi)
+    # N(margin < m) ~ m^p below the k-th smallest margin m_(k); p >= 1 for any density that is finite at zero
+    # (p = 2 for the square-root fold of near-grazing flights), so the linear extrapolation is an upper estimate
+    k_lo = int(lo)
+    expected_in_window = k_lo / float(mc["tail_margin"][k_lo - 1])
+    i_min = int(np.nanargmin(mc["min_ratio"]))
+    j_min = int(np.nanargmin(mc["min_margin"]))
+    where = (lambda i, key: f"sample {i} (gamma = {mc['gamma'][i]:.3g}, mu = {mc['mu'][i]:.3g}, "
+             f"(E-E_m)/gamma^2 = {mc['dE'][i] / mc['gamma'][i] ** 2:.3g}), event {int(mc[key][i])}")
+
+    verdicts = [
+        Verdict(
+            claim="Generic initial conditions never start a sticky event (contacts are instantaneous)",
+            paper_ref="thm:contact-non-generic, eq. sticky-condition",
+            computed=f"Monte-Carlo: {len(mc['gamma'])} random initial conditions (seed {spec['seed']}; gamma "
+                     f"log-uniform, mu under/critically/over-damped, (E-E_m)/gamma^2 log-uniform), "
+                     f"{spec['events']} events each: count of sticky_start",
+            expected="0",
+            measured=f"{n_sticky} sticky_start in {n_ev} events",
+            tolerance=f"exactly 0: the expected number of contacts inside the classifier's rounding window, "
+                      f"extrapolated linearly (an upper estimate) from the {k_lo}-th smallest margin, is "
+                      f"{expected_in_window:.2g} << 1",
+            verdict=judge(n_sticky == 0)),
+        Verdict(
+            claim="Generic initial conditions never graze the floor",
+            paper_ref="thm:contact-non-generic, eq. swishes, thm:Finite-number-swishes",
+            computed="same Monte-Carlo: count of grazing events",
+            expected="0",
+            measured=f"{n_graze} grazing in {n_ev} events",
+            tolerance=f"exactly 0 (expected count inside the window {expected_in_window:.2g})",
+            verdict=judge(n_graze == 0)),
+        Verdict(
+            claim="Zero contact speed has zero probability: no atom at |Xdot_n| = 0",
+            paper_ref="thm:contact-non-generic (zero Lebesgue measure)",
+            computed=f"{mc['n_contacts']} impacts; low tail N(|Xdot_n|/v_ref < r) = C r^p fitted through the "
+                     f"ranked smallest ratios k = {lo}..{hi}; v_ref = launch speed of the flight ending at n",
+            expected="p > 0 (a finite count at r -> 0 would be an atom: a positive-measure set of zero-speed contacts)",
+            measured=f"p = {p_ratio:.2f} +- {p_ratio_err:.2f}; smallest ratio {mc['min_ratio'][i_min]:.3g} at "
+                     + where(i_min, "min_ratio_at"),
+            tolerance="p - 3 sigma > 0 (3 standard errors of the least-squares slope)",
+            verdict=judge(p_ratio - 3 * p_ratio_err > 0)),
+        Verdict(
+            claim="Every Monte-Carlo impact is resolved far outside the classifier's rounding window",
+            paper_ref="thm:contact-non-generic; events.py (tangential contacts)",
+            computed="margin |Xdot_n| / v_tol with v_tol = max(sqrt(32|x''| xn), (288|x'''| xn^2)^(1/3)), "
+                     "xn = 4 eps scale of eq. (F) at the contact",
+            expected="min margin > 1",
+            measured=f"min margin {mc['min_margin'][j_min]:.3g} at " + where(j_min, "min_margin_at")
+                     + f"; tail exponent {p_margin:.2f} +- {p_margin_err:.2f}",
+            tolerance="1 = the classifier's threshold itself",
+            verdict=judge(mc["min_margin"][j_min] > 1.0)),
+    ]
+
+    # constructed sticky onsets
+    ok_kind = sticky["first_kind"] == STICKY_START
+    terr = np.abs(sticky["t_first"] - sticky["T"])
+    ok_time = terr <= 2.0 * sticky["window"]
+    bad = np.flatnonzero(~(ok_kind & ok_time))
+    msg = f"{int((ok_kind & ok_time).sum())}/{ok_kind.size} sticky_start at |t - T| <= 2 delta3"
+    if bad.size:
+        i = int(bad[0])
+        s = sticky["starts"][i]
+        kname = KIND_NAMES[sticky["first_kind"][i]] if sticky["first_kind"][i] >= 0 else "none"
+        msg += (f"; first failure: gamma = {float(sticky['gamma'][i])!r}, mu = {float(sticky['mu'][i])!r}, alpha = "
+                f"{float(sticky['size'][i])!r}, T = {float(sticky['T'][i])!r}, start Deviations(x, xdot, xidot, eta) = "
+                f"{hexs(s.x, s.xdot, s.xidot, s.eta)}: got {kname} at t = {float(sticky['t_first'][i])!r}; "
+                f"failures have alpha/gamma <= {np.max(sticky['size'][bad] / sticky['gamma'][bad]):.3g}")
+        with mp.workdps(50):
+            g, m = float(sticky["gamma"][i]), float(sticky["mu"][i])
+            ex = flight_mp(s.x, s.xdot, s.xidot, s.eta, g, m, sticky["t_first"][i])
+            acc, jerk = contact_derivatives(float(ex[2]), float(ex[3]), g, m)
+        _, v_tol, _, _ = classifier_window(sticky["scale"][i], acc, jerk)
+        tr = simulate(Parameters(g, m), s, max_events=1)
+        msg += (f"; there the exact speed of the rounded start state is |x'| = {abs(float(ex[1])):.3g} < v_tol = "
+                f"{v_tol:.3g}, but the simulator's contact speed is {abs(tr.xdot[0]):.3g} (the Newton polish of "
+                f"flight.first_contact updates v with x'' built from S'(t + dt) and S''(t): error ~ |xi(t) S''| dt^2)")
+    verdicts.append(Verdict(
+        claim="A state backward-evolved from a sticky onset reaches the floor in a sticky event at t = T",
+        paper_ref="eqs. sticky-condition, sticky-cond-Y; sec. 7 (states on S reached by T^-)",
+        computed=f"{ok_kind.size} random onsets (alpha/gamma log-uniform in {spec.get('alpha_over_gamma', [1e-3, 10])}),"
+                 " backward flight by T < 2 alpha/gamma (mpmath, 40 digits), rounded to float64, simulated forward",
+        expected="first event sticky_start at t = T",
+        measured=msg,
+        tolerance="|t - T| <= 2 delta3, delta3 = (6 xn/|x'''|)^(1/3) the classifier's hidden window at xn = 4 eps "
+                  "scale (doubled: the rounded start state moves the tangency by as much)",
+        verdict=judge(bad.size == 0)))
+
+    ok_kind = graze["first_kind"] == GRAZING
+    terr_g = np.abs(graze["t_first"] - graze["T"])
+    ok_time = terr_g <= 2.0 * graze["window"]
+    bad = np.flatnonzero(~(ok_kind & ok_time))
+    msg = f"{int((ok_kind & ok_time).sum())}/{ok_kind.size} grazing at |t - T| <= 2 min(delta2, delta3)"
+    if bad.size:
+        i = int(bad[0])
+        s = graze["starts"][i]
+        kname = KIND_NAMES[graze["first_kind"][i]] if graze["first_kind"][i] >= 0 else "none"
+        msg += (f"; first failure: gamma = {float(graze['gamma'][i])!r}, mu = {float(graze['mu'][i])!r}, x'' = {float(graze['size'][i])!r}, "
+                f"T = {float(graze['T'][i])!r}, start {hexs(s.x, s.xdot, s.xidot, s.eta)}: got {kname} at "
+                f"t = {float(graze['t_first'][i])!r}")
+    verdicts.append(Verdict(
+        claim="A state backward-evolved from a grazing (x = xdot = 0, x'' > 0) grazes the floor at t = T",
+        paper_ref="eq. swishes",
+        computed=f"{ok_kind.size} random grazings (x''/gamma log-uniform in {spec.get('alpha_over_gamma', [1e-3, 10])}), "
+                 "backward flight by T, simulated forward",
+        expected="first event grazing at t = T",
+        measured=msg,
+        tolerance="|t - T| <= 2 min(delta2, delta3), delta2 = sqrt(2 xn/|x''|) (classifier window, doubled as above)",
+        verdict=judge(bad.size == 0)))
+
+    r, k = scan["ratios"], scan["kinds"]
+    tangential_low = bool(np.all(k[r <= 0.25] == STICKY_START))
+    impact_high = bool(np.all(k[r >= 4.0] == IMPACT))
+    switch = r[np.flatnonzero(k == IMPACT)[0]] if np.any(k == IMPACT) else np.nan
+    verdicts.append(Verdict(
+        claim="The classifier calls a contact tangential exactly below its rounding window v_tol",
+        paper_ref="events.py docstring (approximation at the rounding level); eq. sticky-condition",
+        computed=f"arrival speed v = ratio * v_tol on the sticky line (gamma = {scan['gamma']}, mu = {scan['mu']}, "
+                 f"alpha = {scan['alpha']:.3g}), v_tol = {scan['v_tol']:.3g}, backward flight T = {scan['T']:.3g}",
+        expected="sticky_start for v <= v_tol/4, impact for v >= 4 v_tol",
+        measured=f"sticky for all ratios <= 1/4: {tangential_low}; impact for all ratios >= 4: {impact_high}; "
+                 f"first impact at ratio {switch:.3g}",
+        tolerance="factor 4 either side: v_tol is recomputed here from the scale of eq. (F) at T, the simulator "
+                  "evaluates it at its own (rounding-shifted) contact point",
+        verdict=judge(tangential_low and impact_high)))
+
+    verdicts.append(Verdict(
+        claim="Nowhere density of the anomalous set",
+        paper_ref="thm:contact-non-generic (nowhere dense)",
+        computed="-",
+        expected="every neighbourhood of a generic state contains no anomalous state",
+        measured="a topological property of a zero-measure set; a finite sample cannot test it",
+        tolerance="-",
+        verdict=NOT_CHECKABLE))
+
+    n_mc = len(mc["gamma"])
+    data = xr.Dataset(
+        {
+            "mc_gamma": _v("sample", mc["gamma"], "gamma of the Monte-Carlo sample"),
+            "mc_mu": _v("sample", mc["mu"], "mu of the Monte-Carlo sample"),
+            "mc_regime": _v("sample", mc["regime"].astype(np.int8), "damping regime", flag_values=[0, 1, 2],
+                            flag_meanings="under_damped critically_damped over_damped"),
+            "mc_energy_excess": _v("sample", mc["dE"], "initial E - E_m"),
+            "mc_x0": _v("sample", mc["x"], "initial height of the lower mass"),
+            "mc_xdot0": _v("sample", mc["u"], "initial velocity of the lower mass"),
+            "mc_xidot0": _v("sample", mc["a"], "initial xi'"),
+            "mc_eta0": _v("sample", mc["eta"], "initial eta = xi + gamma"),
+            "mc_count": _v(("sample", "kind"), mc["counts"], "number of events of each kind"),
+            "mc_min_ratio": _v("sample", mc["min_ratio"], "smallest |Xdot_n| / launch speed of its flight"),
+            "mc_min_ratio_event": _v("sample", mc["min_ratio_at"], "event index of the smallest ratio"),
+            "mc_min_margin": _v("sample", mc["min_margin"], "smallest |Xdot_n| / v_tol (classifier window)"),
+            "mc_min_margin_event": _v("sample", mc["min_margin_at"], "event index of the smallest margin"),
+            "tail_ratio": _v("rank", mc["tail_ratio"], "ranked smallest |Xdot_n| / launch speed over the sample"),
+            "tail_margin": _v("rank", mc["tail_margin"], "ranked smallest |Xdot_n| / v_tol over the sample"),
+            "st_gamma": _v("onset", sticky["gamma"], "gamma of the constructed sticky onset"),
+            "st_mu": _v("onset", sticky["mu"], "mu of the constructed sticky onset"),
+            "st_alpha": _v("onset", sticky["size"], "alpha_s = 4 gamma mu - Ydot_s of the onset"),
+            "st_T": _v("onset", sticky["T"], "backward flight time T"),
+            "st_x0": _v("onset", sticky["x0"], "height of the backward-evolved start state"),
+            "st_t_first": _v("onset", sticky["t_first"], "time of the first simulated event"),
+            "st_first_kind": _v("onset", sticky["first_kind"], "kind of the first simulated event",
+                                flag_values=[0, 1, 2, 3], flag_meanings=" ".join(KIND_NAMES)),
+            "st_window": _v("onset", sticky["window"], "classifier time window min(delta2, delta3) at the onset"),
+            "st_jerk": _v("onset", sticky["jerk"], "x''' at the onset"),
+            "gr_gamma": _v("graze", graze["gamma"], "gamma of the constructed grazing"),
+            "gr_mu": _v("graze", graze["mu"], "mu of the constructed grazing"),
+            "gr_acc": _v("graze", graze["size"], "x'' at the grazing"),
+            "gr_T": _v("graze", graze["T"], "backward flight time T"),
+            "gr_t_first": _v("graze", graze["t_first"], "time of the first simulated event"),
+            "gr_first_kind": _v("graze", graze["first_kind"], "kind of the first simulated event",
+                                flag_values=[0, 1, 2, 3], flag_meanings=" ".join(KIND_NAMES)),
+            "gr_window": _v("graze", graze["window"], "classifier time window min(delta2, delta3) at the grazing"),
+            "scan_ratio": _v("scan", scan["ratios"], "arrival speed / v_tol"),
+            "scan_kind": _v("scan", scan["kinds"], "kind of the simulated contact", flag_values=[0, 1, 2, 3],
+                            flag_meanings=" ".join(KIND_NAMES)),
+            "scan_recorded_speed": _v("scan", scan["speeds"], "|xdot| recorded after the contact"),
+        },
+        coords={"kind": ("kind", np.array(KIND_NAMES, dtype=object), {"long_name": "event kind", "units": "1"})},
+        attrs={"check": NAME, "n_samples": n_mc, "events_per_sample": int(spec["events"]), "seed": int(spec["seed"]),
+               "n_contacts": mc["n_contacts"], "tail_exponent_ratio": p_ratio, "tail_exponent_ratio_err": p_ratio_err,
+               "tail_exponent_margin": p_margin, "expected_in_window": expected_in_window,
+               "scan_v_tol": scan["v_tol"], "scan_gamma": scan["gamma"], "scan_mu": scan["mu"],
+               "tail_fit_lo": int(lo), "tail_fit_hi": int(hi)},
+    )
+    return verdict_dataset(verdicts, data, title="Theorem contact-non-generic: zero-speed contacts are non-generic")
+
+
+# --------------------------------------------------------------------------- plot
+
+def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
+    from ..figures.common import WIDTH, plt, save
+
+    fig, axs = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
+    # (a) low tails
+    ax = axs[0, 0]
+    for var, lab, c in (("tail_ratio", r"$|\dot X_n|/v_\mathrm{ref}$", "C0"), ("tail_margin", r"$|\dot X_n|/v_\mathrm{tol}$", "C1")):
+        t = ds[var].values
+        k = np.arange(1, t.size + 1)
+        ax.loglog(t, k, ".", ms=3, color=c, label=lab)
+    lo, hi = int(ds.attrs["tail_fit_lo"]), int(ds.attrs["tail_fit_hi"])
+    t = ds["tail_ratio"].values
+    p, _, C = tail_exponent(t, lo, hi)
+    rr = np.geomspace(t[0], t[min(hi, t.size) - 1], 20)
+    ax.loglog(rr, C * rr**p, "k-", lw=0.7, label=r"fit $N\propto r^{%.2f}$" % p)
+    ax.axvline(1.0, color="C1", ls=":", lw=0.8)
+    ax.set_xlabel(r"ratio $r$")
+    ax.set_ylabel(r"number of impacts with ratio $< r$")
+    n_anom = int(ds["mc_count"].values[:, 1:3].sum())
+    ax.set_title("(a) Monte-Carlo low tails: %d runs, %d impacts,\n%d sticky/grazing events"
+                 % (ds.sizes["sample"], ds.attrs["n_contacts"], n_anom), fontsize=8)
+    ax.legend(fontsize=6.5, loc="lower right")
+    # (b) per-sample minima vs energy, in units of the anomaly threshold E_min - E_m (Lemma Min-sticky-energy)
+    ax = axs[0, 1]
+    mu = ds["mc_mu"].values
+    e = ds["mc_energy_excess"].values / (2.0 * ds["mc_gamma"].values ** 2 / (1.0 + 2.0 * mu**2))
+    for reg, c, lab in ((0, "C0", r"$\mu<1$"), (1, "C2", r"$\mu=1$"), (2, "C3", r"$\mu>1$")):
+        s = ds["mc_regime"].values == reg
+        ax.loglog(e[s], ds["mc_min_ratio"].values[s], ".", ms=2, color=c, label=lab)
+    ax.axvline(1.0, color="k", ls="--", lw=0.7)
+    ax.set_xlabel(r"$(E(0)-E_m)/(E_{min}-E_m)$")
+    ax.set_ylabel(r"$\min_n |\dot X_n|/v_\mathrm{ref}$ per run")
+    ax.set_title("(b) smallest contact speed per run\n(left of dashed: no anomaly possible)", fontsize=8)
+    ax.legend(fontsize=6.5, loc="lower left", markerscale=3)
+    # (c) constructed contacts
+    ax = axs[1, 0]
+    markers = {STICKY_START: ("o", "C2", "sticky_start"), GRAZING: ("s", "C0", "grazing"), IMPACT: ("x", "C3", "impact")}
+    for pre, size, lab_x in (("st", "st_alpha", "onset"), ("gr", "gr_acc", "graze")):
+        xval = ds[size].values / ds[f"{pre}_gamma"].values
+        err = np.abs(ds[f"{pre}_t_first"].values - ds[f"{pre}_T"].values) / ds[f"{pre}_window"].values
+        kinds = ds[f"{pre}_first_kind"].values
+        for kd, (mk, c, name) in markers.items():
+            s = kinds == kd
+            if s.any():
+                ax.loglog(xval[s], np.maximum(err[s], 1e-6), mk, ms=3 if pre == "st" else 2.5, color=c,
+                          mfc="none" if pre == "gr" else c,
+                          label=f"{'onset' if pre == 'st' else 'grazing'} -> {name}")
+    ax.axhline(2.0, color="k", ls="--", lw=0.7)
+    ax.set_ylim(top=6.0)
+    ax.set_xlabel(r"$\alpha_s/\gamma$ (onsets), $\ddot x/\gamma$ (grazings)")
+    ax.set_ylabel(r"$|t_1 - T|$ / classifier window")
+    ax.set_title("(c) constructed anomalous contacts (dashed: tolerance)", fontsize=8)
+    ax.legend(fontsize=6, loc="upper center", ncol=2)
+    # (d) speed scan
+    ax = axs[1, 1]
+    r, k = ds["scan_ratio"].values, ds["scan_kind"].values
+    for kd, (mk, c, name) in markers.items():
+        s = k == kd
+        if s.any():
+            ax.semilogx(r[s], k[s], mk, color=c, ms=4, label=name)
+    ax.axvline(1.0, color="k", ls=":", lw=0.8)
+    ax.set_yticks([0, 1, 2])
+    ax.set_yticklabels(["impact", "grazing", "sticky"])
+    ax.set_ylim(-0.5, 2.5)
+    ax.set_xlabel(r"arrival speed $v / v_\mathrm{tol}$")
+    ax.set_ylabel("classified as")
+    ax.set_title(r"(d) sticky-line arrival, $\gamma=%g$, $\mu=%g$" % (ds.attrs["scan_gamma"], ds.attrs["scan_mu"]),
+                 fontsize=8)
+    fig.suptitle(f"Check {NAME}: Theorem contact-non-generic (dimensionless units)", fontsize=9)
+    fig.tight_layout()
+    save(fig, outputs)
+
+
+CHECK = Check(NAME, run, plot, title="Theorem contact-non-generic: zero-speed contacts are non-generic")
