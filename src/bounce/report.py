@@ -55,9 +55,21 @@ def worst(verdicts) -> str:
     return min((v.verdict for v in verdicts), key=ORDER.__getitem__, default=NOT_CHECKABLE)
 
 
+ERRATA = "errata"
+
+
+def is_erratum(check: str, v: Verdict) -> bool:
+    """Rows about the paper's text as printed (the errata check, or rows of other checks so marked)."""
+    return check == ERRATA or "as printed" in v.claim
+
+
 def summaries(reports, groups: dict) -> list[tuple[str, str, int]]:
-    """(subject, overall verdict, rows) for each figure/theorem in ``groups``: subject -> paper refs."""
-    rows = [v for r in reports for v in r.verdicts]
+    """(subject, overall verdict, rows) for each figure/theorem in ``groups``: subject -> paper refs.
+
+    The errata check is left out: a typo in a proof says nothing about whether the statement
+    holds; the errata are listed in their own section.
+    """
+    rows = [v for r in reports for v in r.verdicts if not is_erratum(r.name, v)]
     out = []
     for subject, refs in groups.items():
         backing = [v for v in rows if any(ref in v.paper_ref for ref in refs)]
@@ -95,10 +107,12 @@ def markdown(reports, groups, meta: dict) -> str:
         if r.numbers:
             lines += ["", "| quantity | value |", "|---|---|"]
             lines += [f"| {_md_cell(k)} | {val:.6g} |" for k, val in r.numbers.items()]
-    errata = [v for r in reports if r.name == "errata" for v in r.verdicts]
-    lines += ["", "## Errata", ""]
+    errata = [v for r in reports for v in r.verdicts if is_erratum(r.name, v) and v.verdict == NOT_REPRODUCED]
+    lines += ["", "## Errata", "", "Statements of the paper, as printed, that the numerics or the algebra contradict "
+              "(the check `errata` also lists the formulas it verified):", ""]
     if errata:
-        lines += [f"* {v.claim} ({v.paper_ref}): {v.measured} [{v.verdict}]" for v in errata]
+        lines += [f"* **{v.paper_ref}**: {v.claim}. Evidence: {v.measured} (expected as printed: {v.expected})."
+                  for v in errata]
     else:
         lines.append("(no errata check in this run)")
     return "\n".join(lines) + "\n"

@@ -67,6 +67,8 @@ STUDIES = {
     "contact-switch": ("bounce.methods.contact_switch", "switch_study", "plot_switch_study"),
     "reduced-vs-dimer": ("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer"),
     "least-model": ("bounce.methods.reduced_compare", "least_model", "plot_least_model"),
+    "work-precision": ("bounce.methods.compare", "work_precision", "plot_work_precision"),
+    "stability-map": ("bounce.methods.compare", "stability_map", "plot_stability_map"),
 }
 
 

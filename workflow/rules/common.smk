@@ -55,6 +55,8 @@ STUDIES = {
         REDUCED["least_model"],
         scene_specs={k: config["scenes"][k] for k in REDUCED["least_model"]["scenes"]},
     ),
+    "work-precision": config["methods"],
+    "stability-map": config["methods"],
 }
 
 

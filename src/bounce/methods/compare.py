@@ -1,0 +1,638 @@
+"""Measurement layer of the speed-vs-accuracy study: run methods over settings sweeps, score them
+against the exact solver, build xarray datasets, draw the work-precision and stability-map charts.
+
+Why error metrics need care: the transient of the drop gamma = mu = 0.01 from
+psi(0) = 6 is chaotic (near-grazing flights multiply state errors by orders of
+magnitude within ~20 impacts), so "impact time n of method M minus impact time
+n of the exact solver" is meaningless for large n.  The metrics kept here stay
+meaningful:
+
+1. ``err_impact_times``: max relative error of the first ``n_h`` impact times
+   (n_h inside the predictability horizon; the regular double-impact regime of
+   the first ~10 impacts), and ``n_tracked``, the number of leading impacts
+   whose times agree to ``track_tol`` relative;
+2. one-step errors: from exact post-impact states at chosen impact indices (the
+   same float64 State fed to the exact solver and to the method), one flight:
+   relative error of the flight time and of the next post-impact speed;
+3. ``err_y_rms``: RMS error of y(t) over a fixed window (inside the horizon);
+4. the asymptotic constant n tau_n mu / 3 (paper, Theorem main_thm: -> 1),
+   median over the last ``window`` flights before each requested n and at the
+   largest n the method reached, against the exact solver at the same n: the law
+   is a property of the dynamics, not of one trajectory, so it survives chaos.
+
+Spec (one dict, the ``methods`` section of config/config.yaml)::
+
+    scenes:  {name: {gamma, mu, initial: {...}}}          # as config scenes (no stop)
+    work_precision: {scene, n_h, track_tol, y_window: {t: [a, b], samples},
+                     one_step: {impacts: [...]}, long: {events, cpu_budget},
+                     transient_budget, asymptotic: {n: [...], window},
+                     timing: {min_total, max_repeats}, sweeps: [...]}
+    stability_map:  {scene, events, cpu_budget, track_tol, sweeps: [...]}
+
+A sweep is ``{method, fixed: {...}, curves: {key: [values]}, vary: {key: [values], ...}}``:
+one curve per combination of the ``curves`` values, along each curve the zipped
+``vary`` lists (the first ``vary`` key is the curve's abscissa in the stability map).
+The exact method is always measured too (one run, label "exact").
+
+Pipeline entry points: :func:`work_precision` and :func:`stability_map`
+(``(spec) -> xr.Dataset``), :func:`plot_work_precision` and
+:func:`plot_stability_map` (``(ds, spec, outputs)``); :func:`headline` gives the
+summary numbers.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import logging
+import math
+
+import numpy as np
+import xarray as xr
+
+from ..events import IMPACT
+from ..model import Deviations, Parameters, State
+from ..scenes import scene_initial, scene_parameters
+from ..simulate import simulate
+from . import registry
+from .base import FAILURES, MethodResult
+
+log = logging.getLogger(__name__)
+
+CATEGORY_COLORS = {
+    "": "0.55", "missed_impact": "C3", "fell_through": "C1", "stall": "C4", "energy_gain": "C0",
+    "collapse": "C5", "endless_contact": "C2", "budget": "0.2",
+}
+
+
+# --------------------------------------------------------------------------- settings
+
+def _number(v):
+    """YAML 1.1 (PyYAML, snakemake) reads 1.0e4 -- no exponent sign -- as a string: take it as the number."""
+    if isinstance(v, str):
+        try:
+            return float(v)
+        except ValueError:
+            return v
+    return v
+
+
+def expand_sweeps(sweeps: list[dict]) -> list[dict]:
+    """Runs of a list of sweeps: dicts with method, setting, label (curve), key and value (abscissa)."""
+    runs = []
+    for sw in sweeps:
+        method = sw["method"]
+        fixed = {k: _number(v) for k, v in (sw.get("fixed", {}) or {}).items()}
+        curves = {k: [_number(v) for v in vals] for k, vals in (sw.get("curves", {}) or {}).items()}
+        vary = {k: [_number(v) for v in vals] for k, vals in (sw.get("vary", {}) or {}).items()}
+        lengths = {len(v) for v in vary.values()}
+        if len(lengths) > 1:
+            raise ValueError(f"sweep of {method}: the vary lists must have equal lengths, got {lengths}")
+        n = lengths.pop() if lengths else 1
+        keys = list(curves)
+        for combo in itertools.product(*(curves[k] for k in keys)) if keys else [()]:
+            cur = dict(zip(keys, combo))
+            named = {**{k: v for k, v in fixed.items() if k == "solver"}, **cur}
+            bits = [str(v) if isinstance(v, str) else f"{k}={v:.3g}" for k, v in named.items()]
+            label = " ".join([sw.get("label", method)] + bits)
+            for i in range(n):
+                var = {k: vals[i] for k, vals in vary.items()}
+                key = next(iter(vary)) if vary else ""
+                runs.append({
+                    "method": method, "setting": {**fixed, **cur, **var}, "label": label,
+                    "key": key, "value": float(var[key]) if key else math.nan,
+                })
+    return runs
+
+
+def _scene(spec: dict, name: str):
+    scene = spec["scenes"][name]
+    params = scene_parameters(scene)
+    return params, scene_initial(scene, params)
+
+
+def _json(setting: dict) -> str:
+    return json.dumps(setting, sort_keys=True, default=float)
+
+
+# --------------------------------------------------------------------------- references
+
+class Reference:
+    """The exact solution of a scene: impacts (times, post-impact states) and closed-form y samples."""
+
+    def __init__(self, params: Parameters, initial, events: int, sample_times=None, spread_runs: int = 0,
+                 spread_eps: float = 1e-9):
+        self.params = params
+        self.initial = initial
+        traj = simulate(params, initial, max_events=max(int(events), 1))
+        imp = traj.kind == IMPACT
+        self.t = traj.t[imp]
+        self.xdot = traj.xdot[imp]
+        self.xidot = traj.xidot[imp]
+        self.eta = traj.eta[imp]
+        self.only_impacts = bool(imp.all())
+        self.sample_times = None if sample_times is None else np.asarray(sample_times, dtype=float)
+        self.y = None
+        if self.sample_times is not None:
+            from .exact import run as exact_run
+
+            self.y = exact_run(params, initial, max_events=max(int(events), 1),
+                               t_max=float(self.sample_times.max()) * (1 + 1e-12) + 1e-12,
+                               sample_times=self.sample_times).y
+        n = np.arange(1, self.t.size + 1)
+        self.tau = np.diff(np.concatenate([[0.0], self.t]))
+        self.asym = n * self.tau * params.mu / 3.0
+        # exact runs from initial states perturbed by spread_eps (relative): the trajectory-to-trajectory
+        # spread of n tau_n mu/3 is the floor below which metric (4) cannot tell methods apart (chaos)
+        self.perturbed = []
+        rng = np.random.default_rng(12345)
+        for _ in range(int(spread_runs)):
+            f = 1.0 + spread_eps * rng.uniform(-1.0, 1.0, 2)
+            if isinstance(initial, Deviations):
+                init = Deviations(x=initial.x * f[0], xdot=initial.xdot, xidot=initial.xidot, eta=initial.eta * f[1])
+            else:
+                init = State(x=initial.x * f[0], xdot=initial.xdot, y=initial.y * f[1], ydot=initial.ydot)
+            tr = simulate(params, init, max_events=max(int(events), 1))
+            self.perturbed.append(tr.t[tr.kind == IMPACT])
+
+    def asym_spread(self, n_at: int, window: int) -> float:
+        """Relative standard deviation of n tau_n mu/3 at impact n_at over the perturbed exact runs."""
+        c = np.array([asymptotic_constant(t, self.params.mu, n_at, window) for t in self.perturbed])
+        c = c[np.isfinite(c)]
+        return float(np.std(c) / abs(np.mean(c))) if c.size > 1 else math.nan
+
+    def post_state(self, k: int) -> State:
+        """The exact state just after impact k (0-based), rounded to a float64 State."""
+        return Deviations(x=0.0, xdot=float(self.xdot[k]), xidot=float(self.xidot[k]),
+                          eta=float(self.eta[k])).to_state(self.params)
+
+
+def asymptotic_constant(t: np.ndarray, mu: float, n_at: int, window: int, n0: int = 0) -> float:
+    """Median of n tau_n mu/3 over the ``window`` flights ending at impact n_at (1-based n).
+
+    ``t[k]`` is the time of impact n0 + k + 1 (any time origin): n0 > 0 for a run started from the
+    state after impact n0."""
+    k_at = n_at - n0
+    if k_at < 2 or t.size < k_at:
+        return math.nan
+    lo = max(k_at - window, 1)
+    n = n0 + np.arange(lo + 1, k_at + 1)
+    tau = t[lo:k_at] - t[lo - 1:k_at - 1]
+    return float(np.median(n * tau * mu / 3.0))
+
+
+# --------------------------------------------------------------------------- running
+
+def _warm_up(spec_run, params, initial, setting):
+    """One tiny run so that JIT compilation (numba) stays out of every timed run."""
+    try:
+        spec_run(params, initial, setting, max_events=1, t_max=1.0)
+    except Exception:  # noqa: BLE001 - warm-up must not decide anything
+        pass
+
+
+def _timed(run, params, initial, setting, timing, **kw) -> MethodResult:
+    """Run; if it took less than timing['min_total'] CPU seconds, repeat and keep the fastest CPU time."""
+    res = run(params, initial, setting, **kw)
+    total, best, reps = res.cpu_time, res.cpu_time, 1
+    while total < timing.get("min_total", 0.05) and reps < timing.get("max_repeats", 20):
+        again = run(params, initial, setting, **kw)
+        total += again.cpu_time
+        best = min(best, again.cpu_time)
+        reps += 1
+    return MethodResult(method=res.method, setting=res.setting, t=res.t, xdot=res.xdot, cpu_time=best,
+                        failure=res.failure, failure_index=res.failure_index, t_end=res.t_end, y=res.y,
+                        extra={**res.extra, "repeats": reps})
+
+
+def _n_tracked(t: np.ndarray, t_ref: np.ndarray, tol: float) -> int:
+    n = min(t.size, t_ref.size)
+    bad = np.nonzero(~(np.abs(t[:n] - t_ref[:n]) <= tol * np.abs(t_ref[:n])))[0]
+    return int(bad[0]) if bad.size else n
+
+
+def _with_budget(setting: dict, budget) -> dict:
+    out = dict(setting)
+    if budget is not None and "cpu_budget" not in out:
+        out["cpu_budget"] = float(budget)
+    return out
+
+
+def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp: dict) -> dict:
+    """All work-precision numbers of one (method, setting)."""
+    methods = registry()
+    run = methods[method].run
+    timing = wp.get("timing", {})
+    n_h = int(wp["n_h"])
+    track_tol = float(wp.get("track_tol", 1e-6))
+    win = wp["y_window"]
+    samples = ref.sample_times
+    # past impact n_h with margin: a method whose impacts lag the exact ones must still reach n_h
+    t_stop = max(float(win["t"][1]), 1.2 * float(ref.t[n_h - 1]))
+    base = dict(setting) if method != "exact" else {}
+    _warm_up(run, params, initial, base)
+    out: dict = {}
+
+    # (1) + (3): the transient, to the end of the y window and past impact n_h
+    tr = _timed(run, params, initial, _with_budget(base, wp.get("transient_budget")), timing,
+                max_events=10 * n_h + 1000, t_max=t_stop, sample_times=samples)
+    out["cpu_transient"] = tr.cpu_time
+    k = min(tr.t.size, n_h)
+    rel = np.abs(tr.t[:k] - ref.t[:k]) / ref.t[:k]
+    out["err_impact_times"] = float(rel.max()) if k == n_h else math.nan
+    out["n_tracked"] = _n_tracked(tr.t, ref.t, track_tol)
+    y = tr.y
+    out["err_y_rms"] = float(np.sqrt(np.mean((y - ref.y) ** 2))) if y is not None and np.all(np.isfinite(y)) else math.nan
+    out["transient_failure"] = tr.failure
+
+    # (2) one flight from exact post-impact states
+    idx = [int(j) for j in wp.get("one_step", {}).get("impacts", [])]
+    e_tau, e_v, c_one = [], [], []
+    for j in idx:
+        if j + 1 >= ref.t.size:
+            e_tau.append(math.nan), e_v.append(math.nan), c_one.append(math.nan)
+            continue
+        st = ref.post_state(j)
+        one_ref = simulate(params, st, max_events=1)
+        tau_ref, v_ref = float(one_ref.t[0]), float(one_ref.xdot[0])
+        r1 = _timed(run, params, st, _with_budget(base, wp.get("transient_budget")), timing,
+                    max_events=1, t_max=20.0 * tau_ref + 1.0)
+        if r1.t.size and np.isfinite(r1.xdot[0]):
+            e_tau.append(abs(float(r1.t[0]) - tau_ref) / tau_ref)
+            e_v.append(abs(float(r1.xdot[0]) - v_ref) / v_ref)
+        else:
+            e_tau.append(math.nan), e_v.append(math.nan)
+        c_one.append(r1.cpu_time)
+    out["err_flight_time"], out["err_speed"], out["cpu_one_step"] = e_tau, e_v, c_one
+
+    # (4) the long run: impacts per CPU second, asymptotic constant, failure
+    long = wp.get("long", {})
+    lr = run(params, initial, _with_budget(base, long.get("cpu_budget")), max_events=int(long.get("events", 10000)))
+    n_done = int(lr.t.size)
+    out["n_impacts"] = n_done
+    out["cpu_long"] = lr.cpu_time
+    out["t_end"] = float(lr.t_end)
+    out["failure"] = lr.failure
+    out["failure_index"] = int(lr.failure_index)
+    out["n_tracked_long"] = _n_tracked(lr.t, ref.t, track_tol)
+    asym = wp.get("asymptotic", {})
+    window = int(asym.get("window", 100))
+    out["asym_constant"] = [asymptotic_constant(lr.t, params.mu, int(n), window) for n in asym.get("n", [])]
+    n_min = int(asym.get("n_min", 1000))
+    usable = n_min <= n_done <= ref.t.size
+    out["asym_constant_last"] = asymptotic_constant(lr.t, params.mu, n_done, window) if usable else math.nan
+    out["asym_n_last"] = n_done
+    out["asym_constant_last_ref"] = asymptotic_constant(ref.t, params.mu, n_done, window) if usable else math.nan
+    out["asym_spread_last"] = ref.asym_spread(n_done, window) if usable else math.nan
+    return out
+
+
+# --------------------------------------------------------------------------- datasets
+
+def _attrs(long_name: str, units: str, **extra) -> dict:
+    return {"long_name": long_name, "units": units, **extra}
+
+
+def work_precision(spec: dict) -> xr.Dataset:
+    """Work-precision dataset (dimension ``run``; one-step errors also over ``ref_impact``,
+    asymptotic constants over ``asym_n``) for the sweeps of ``spec['work_precision']``."""
+    wp = spec["work_precision"]
+    params, initial = _scene(spec, wp["scene"])
+    win = wp["y_window"]
+    samples = np.linspace(float(win["t"][0]), float(win["t"][1]), int(win.get("samples", 1001)))
+    asym_n = [int(n) for n in wp.get("asymptotic", {}).get("n", [])]
+    idx = [int(j) for j in wp.get("one_step", {}).get("impacts", [])]
+    ref_events = max([int(wp["n_h"]) + 1, int(wp.get("long", {}).get("events", 10000)), *(j + 2 for j in idx), *asym_n])
+    asym = wp.get("asymptotic", {})
+    ref = Reference(params, initial, ref_events, samples, spread_runs=int(asym.get("spread_runs", 8)),
+                    spread_eps=float(asym.get("spread_eps", 1e-9)))
+    runs = [{"method": "exact", "setting": {}, "label": "exact", "key": "", "value": math.nan}]
+    runs += expand_sweeps(wp.get("sweeps", []))
+    rows = []
+    for i, r in enumerate(runs):
+        rows.append(measure_run(r["method"], r["setting"], params, initial, ref, wp))
+        log.info("work-precision %d/%d %s %s: err %.3g, cpu %.3g s, %d impacts, failure %r", i + 1, len(runs),
+                 r["label"], _json(r["setting"]), rows[-1]["err_impact_times"], rows[-1]["cpu_transient"],
+                 rows[-1]["n_impacts"], rows[-1]["failure"])
+    return _assemble_wp(runs, rows, ref, params, spec, idx, asym_n)
+
+
+def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
+    wp = spec["work_precision"]
+    asym = wp.get("asymptotic", {})
+    nr = len(runs)
+
+    def col(name, dtype=float):
+        return np.array([r[name] for r in rows], dtype=dtype)
+
+    run_dim = ("run",)
+    ds = xr.Dataset(
+        {
+            "cpu_transient": (run_dim, col("cpu_transient"), _attrs(
+                "CPU (process) time of the transient run: to the end of the y window and past impact n_h", "s")),
+            "err_impact_times": (run_dim, col("err_impact_times"), _attrs(
+                "max relative error of the first n_h impact times against the exact solver", "1")),
+            "n_tracked": (run_dim, col("n_tracked", np.int64), _attrs(
+                "number of leading impacts whose times agree with the exact solver to track_tol (transient run)", "1")),
+            "err_y_rms": (run_dim, col("err_y_rms"), _attrs(
+                "RMS error of the upper-mass height y(t) over the window y_window", "L (spring rest length)")),
+            "err_flight_time": (("run", "ref_impact"), np.array([r["err_flight_time"] for r in rows]).reshape(nr, len(idx)),
+                                _attrs("one-step relative error of the flight time from the exact post-impact state", "1")),
+            "err_speed": (("run", "ref_impact"), np.array([r["err_speed"] for r in rows]).reshape(nr, len(idx)),
+                          _attrs("one-step relative error of the next post-impact speed of the lower mass", "1")),
+            "cpu_one_step": (("run", "ref_impact"), np.array([r["cpu_one_step"] for r in rows]).reshape(nr, len(idx)),
+                             _attrs("CPU (process) time of the one-flight run", "s")),
+            "n_impacts": (run_dim, col("n_impacts", np.int64), _attrs("impacts (contacts) done in the long run", "1")),
+            "cpu_long": (run_dim, col("cpu_long"), _attrs("CPU (process) time of the long run", "s")),
+            "cpu_per_impact": (run_dim, col("cpu_long") / np.maximum(col("n_impacts"), 1), _attrs(
+                "CPU time per impact in the long run", "s")),
+            "t_end": (run_dim, col("t_end"), _attrs("time reached by the long run", "sqrt(m/2k)")),
+            "failure": (run_dim, col("failure", str), _attrs(
+                "failure category of the long run (empty: ran to the event budget)", "",
+                categories=" ".join(f or "none" for f in FAILURES))),
+            "failure_index": (run_dim, col("failure_index", np.int64), _attrs(
+                "0-based index of the impact where the long run failed (-1: none)", "1")),
+            "transient_failure": (run_dim, col("transient_failure", str), _attrs(
+                "failure category of the transient run", "")),
+            "n_tracked_long": (run_dim, col("n_tracked_long", np.int64), _attrs(
+                "number of leading impacts tracked to track_tol in the long run", "1")),
+            "asym_constant": (("run", "asym_n"), np.array([r["asym_constant"] for r in rows]).reshape(nr, len(asym_n)),
+                              _attrs("median of n tau_n mu/3 over the window of flights ending at impact n", "1")),
+            "asym_constant_ref": (("asym_n",), np.array([asymptotic_constant(ref.t, params.mu, n, int(asym.get("window", 100))) for n in asym_n]),
+                                  _attrs("n tau_n mu/3 of the exact solver (same window)", "1")),
+            "asym_constant_last": (run_dim, col("asym_constant_last"), _attrs(
+                "median of n tau_n mu/3 over the last window of flights of the long run", "1")),
+            "asym_constant_last_ref": (run_dim, col("asym_constant_last_ref"), _attrs(
+                "exact solver's n tau_n mu/3 at the same n as asym_constant_last", "1")),
+            "asym_n_last": (run_dim, col("asym_n_last", np.int64), _attrs("largest impact index n reached (1-based)", "1")),
+            "asym_spread_last": (run_dim, col("asym_spread_last"), _attrs(
+                "chaos floor of metric (4) at asym_n_last: relative std of n tau_n mu/3 over exact runs from "
+                "initial states perturbed by spread_eps", "1")),
+            "asym_spread": (("asym_n",), np.array([ref.asym_spread(n, int(asym.get("window", 100))) for n in asym_n]),
+                            _attrs("chaos floor of metric (4) at asym_n (relative std over perturbed exact runs)", "1")),
+        },
+        coords={
+            "run": ("run", np.arange(nr), _attrs("run index (one method and setting)", "1")),
+            "method": ("run", np.array([r["method"] for r in runs], dtype=str), _attrs("method name", "")),
+            "label": ("run", np.array([r["label"] for r in runs], dtype=str), _attrs("curve label (method and fixed settings)", "")),
+            "setting": ("run", np.array([_json(r["setting"]) for r in runs], dtype=str), _attrs("setting as JSON", "")),
+            "sweep_key": ("run", np.array([r["key"] for r in runs], dtype=str), _attrs("setting varied along the curve", "")),
+            "sweep_value": ("run", np.array([r["value"] for r in runs], dtype=float), _attrs("value of sweep_key", "as the setting")),
+            "ref_impact": ("ref_impact", np.array(idx, dtype=np.int64), _attrs(
+                "0-based index of the exact impact whose post-impact state starts the one-step run", "1")),
+            "asym_n": ("asym_n", np.array(asym_n, dtype=np.int64), _attrs("impact index n (1-based) of the asymptotic constant", "1")),
+        },
+    )
+    ds["err_asym_constant"] = (("run", "asym_n"), np.abs(ds["asym_constant"].values / ds["asym_constant_ref"].values - 1.0),
+                               _attrs("relative error of n tau_n mu/3 against the exact solver", "1"))
+    ds["err_flight_time_max"] = ds["err_flight_time"].max("ref_impact", skipna=False)
+    ds["err_flight_time_max"].attrs = _attrs("max over ref_impact of the one-step flight-time relative error", "1")
+    ds["err_one_step_max"] = np.fmax(ds["err_flight_time"], ds["err_speed"]).max("ref_impact", skipna=False)
+    ds["err_one_step_max"].attrs = _attrs(
+        "max over ref_impact of the one-step relative errors of flight time and post-impact speed", "1")
+    ds["cpu_per_flight"] = ds["cpu_one_step"].mean("ref_impact")
+    ds["cpu_per_flight"].attrs = _attrs("mean CPU time of one flight (one-step runs)", "s")
+    ds.attrs.update({
+        "title": "Work-precision of general-purpose methods against the exact event-driven solver",
+        "gamma": params.gamma, "mu": params.mu, "scene": wp["scene"],
+        "initial": _json(spec["scenes"][wp["scene"]]["initial"]), "n_h": int(wp["n_h"]),
+        "track_tol": float(wp.get("track_tol", 1e-6)), "y_window": _json({"t": list(map(float, wp["y_window"]["t"]))}),
+        "reference_impacts": int(ref.t.size), "spec": _json(wp),
+        "Conventions": "CF-1.10", "units_note": "dimensionless: lengths in L, times in sqrt(m/2k), CPU in process seconds",
+    })
+    return ds
+
+
+def stability_map(spec: dict) -> xr.Dataset:
+    """Failure category and index over settings sweeps (``spec['stability_map']``), dimensions (run, start).
+
+    ``starts`` (default [0]) are impact counts n0: n0 = 0 runs from the scene's initial state for
+    ``events`` impacts; n0 > 0 starts from the exact state just after impact n0 (1-based) and runs
+    ``flights`` impacts -- so methods too slow to get there from t = 0 are still mapped at the small
+    flight times (~3/(mu n0)) of the asymptotic regime.  Indices in the dataset are absolute (n0 + ...).
+    """
+    sm = spec["stability_map"]
+    params, initial = _scene(spec, sm["scene"])
+    events = int(sm.get("events", 100000))
+    starts = sorted(int(n0) for n0 in sm.get("starts", [0]))
+    flights = int(sm.get("flights", events))
+    window = int(sm.get("window", 100))
+    ref = Reference(params, initial, max(events, starts[-1] + flights + 1))
+    track_tol = float(sm.get("track_tol", 1e-6))
+    runs = expand_sweeps(sm["sweeps"])
+    methods = registry()
+    names = ("failure", "failure_index", "n_impacts", "cpu", "t_end", "n_tracked", "tau_last", "tau_ref_at_stop",
+             "asym_last", "asym_last_ref")
+    rows = {k: [] for k in names}
+    for r in runs:
+        run = methods[r["method"]].run
+        _warm_up(run, params, initial, r["setting"])
+        for n0 in starts:
+            init = initial if n0 == 0 else ref.post_state(n0 - 1)
+            res = run(params, init, _with_budget(r["setting"], sm.get("cpu_budget")),
+                      max_events=events if n0 == 0 else flights)
+            n = int(res.t.size)
+            stop = n0 + (int(res.failure_index) if res.failure else n)  # absolute 0-based index of the stop
+            t_origin = ref.t[n0 - 1] if n0 > 0 else 0.0
+            n_abs = n0 + n
+            ok = 0 < n_abs <= ref.t.size and n >= min(window, 2)
+            vals = {
+                "failure": res.failure, "failure_index": n0 + int(res.failure_index) if res.failure else -1,
+                "n_impacts": n_abs, "cpu": res.cpu_time, "t_end": t_origin + float(res.t_end),
+                "n_tracked": n0 + _n_tracked(res.t, ref.t[n0:] - t_origin, track_tol),
+                "tau_last": float(res.t[-1] - res.t[-2]) if n > 1 else math.nan,
+                "tau_ref_at_stop": float(ref.tau[min(stop, ref.t.size - 1)]),
+                "asym_last": asymptotic_constant(res.t, params.mu, n_abs, window, n0=n0) if ok else math.nan,
+                "asym_last_ref": asymptotic_constant(ref.t, params.mu, n_abs, window) if ok else math.nan,
+            }
+            for k in names:
+                rows[k].append(vals[k])
+            log.info("stability %s %s from n0=%d: %d impacts, failure %r at %d, cpu %.3g s", r["label"],
+                     _json(r["setting"]), n0, n, res.failure, vals["failure_index"], res.cpu_time)
+    nr, ns = len(runs), len(starts)
+
+    def col(name, dtype=float):
+        return np.array(rows[name], dtype=dtype).reshape(nr, ns)
+
+    dims = ("run", "start")
+    ds = xr.Dataset(
+        {
+            "failure": (dims, col("failure", str), _attrs(
+                "failure category (empty: reached the event budget)", "", categories=" ".join(f or "none" for f in FAILURES))),
+            "failure_index": (dims, col("failure_index", np.int64), _attrs(
+                "absolute 0-based impact index of the failure (-1: none)", "1")),
+            "n_impacts": (dims, col("n_impacts", np.int64), _attrs(
+                "absolute impact index reached (n0 + impacts done in this run)", "1")),
+            "cpu": (dims, col("cpu"), _attrs("CPU (process) time of the run", "s")),
+            "t_end": (dims, col("t_end"), _attrs("time reached (exact impact time of the start + run time)", "sqrt(m/2k)")),
+            "n_tracked": (dims, col("n_tracked", np.int64), _attrs(
+                "absolute number of leading impacts whose times (from the start) agree with the exact solver to track_tol",
+                "1")),
+            "tau_last": (dims, col("tau_last"), _attrs("last flight time of the method", "sqrt(m/2k)")),
+            "tau_ref_at_stop": (dims, col("tau_ref_at_stop"), _attrs(
+                "exact flight time at the impact index where the run stopped (the time scale the method could not resolve)",
+                "sqrt(m/2k)")),
+            "asym_last": (dims, col("asym_last"), _attrs("median n tau_n mu/3 over the last window of flights", "1")),
+            "asym_last_ref": (dims, col("asym_last_ref"), _attrs("exact n tau_n mu/3 at the same n (same window)", "1")),
+        },
+        coords={
+            "run": ("run", np.arange(nr), _attrs("run index", "1")),
+            "start": ("start", np.array(starts, dtype=np.int64), _attrs(
+                "impact count n0 at the start (0: the scene's initial state; else the exact state after impact n0)", "1")),
+            "method": ("run", np.array([r["method"] for r in runs], dtype=str), _attrs("method name", "")),
+            "label": ("run", np.array([r["label"] for r in runs], dtype=str), _attrs("curve label", "")),
+            "setting": ("run", np.array([_json(r["setting"]) for r in runs], dtype=str), _attrs("setting as JSON", "")),
+            "sweep_key": ("run", np.array([r["key"] for r in runs], dtype=str), _attrs("setting varied along the curve", "")),
+            "sweep_value": ("run", np.array([r["value"] for r in runs], dtype=float), _attrs("value of sweep_key", "as the setting")),
+        },
+    )
+    ds.attrs.update({
+        "title": "Stability map: where general-purpose methods fail on the bouncing ball",
+        "gamma": params.gamma, "mu": params.mu, "scene": sm["scene"], "events": events, "flights": flights,
+        "track_tol": track_tol, "spec": _json(sm), "Conventions": "CF-1.10",
+    })
+    return ds
+
+
+# --------------------------------------------------------------------------- summaries
+
+def headline(ds: xr.Dataset, target: float = 1e-8) -> dict:
+    """Exact vs the cheapest run of every other method reaching ``target`` in err_impact_times."""
+    ex = ds.where(ds["method"] == "exact", drop=True)
+    out = {"exact_cpu_transient": float(ex["cpu_transient"][0]), "exact_cpu_per_impact": float(ex["cpu_per_impact"][0]),
+           "target": target}
+    for m in np.unique(ds["method"].values):
+        if m == "exact":
+            continue
+        sub = ds.where((ds["method"] == m) & (ds["err_impact_times"] <= target), drop=True)
+        if sub.sizes.get("run", 0) == 0:
+            out[m] = None
+            continue
+        i = int(np.argmin(sub["cpu_transient"].values))
+        out[m] = {
+            "label": str(sub["label"].values[i]), "setting": str(sub["setting"].values[i]),
+            "err_impact_times": float(sub["err_impact_times"].values[i]),
+            "cpu_transient": float(sub["cpu_transient"].values[i]),
+            "cpu_ratio_transient": float(sub["cpu_transient"].values[i]) / out["exact_cpu_transient"],
+            "cpu_per_impact": float(sub["cpu_per_impact"].values[i]),
+            "cpu_ratio_per_impact": float(sub["cpu_per_impact"].values[i]) / out["exact_cpu_per_impact"],
+        }
+    return out
+
+
+# --------------------------------------------------------------------------- figures
+
+def _curves(ds):
+    """(label, method, indices sorted along the sweep) for every curve."""
+    labels = list(dict.fromkeys(ds["label"].values.tolist()))
+    for lab in labels:
+        idx = np.nonzero(ds["label"].values == lab)[0]
+        order = np.argsort(ds["sweep_value"].values[idx])
+        yield lab, str(ds["method"].values[idx[0]]), idx[order]
+
+
+_MARKERS = {"scipy": "o", "penalty": "s", "moreau-jean": "^", "exact": "*"}
+
+
+def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
+    """Four log-log panels: error vs CPU time, one curve per method/setting sweep; exact as a vertical line.
+
+    Hollow markers: the long run failed (its category in the stability map)."""
+    from ..figures.common import WIDTH, plt, save
+
+    panels = [
+        ("cpu_transient", "err_impact_times", "CPU time, transient [s]",
+         r"(a) rel. error, impact times $1..n_h$"),
+        ("cpu_transient", "err_y_rms", "CPU time, transient [s]", r"(b) RMS error of $y(t)$, window [L]"),
+        ("cpu_per_flight", "err_one_step_max", "CPU time per flight [s]",
+         "(c) one-step rel. error (time, speed)"),
+        ("cpu_per_impact", "err_asym_last", "CPU time per impact, long run [s]",
+         r"(d) rel. error of $n\tau_n\mu/3$, largest $n$"),
+    ]
+    ds = ds.copy()
+    ds["err_asym_last"] = np.abs(ds["asym_constant_last"] / ds["asym_constant_last_ref"] - 1.0)
+    fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
+    colors = {}
+    for ax, (xv, yv, xl, yl) in zip(axes.flat, panels):
+        for lab, method, idx in _curves(ds):
+            if method == "exact":
+                ax.axvline(float(ds[xv].values[idx[0]]), color="k", ls="--", lw=0.8)
+                continue
+            c = colors.setdefault(lab, f"C{len(colors) % 10}")
+            x, y = ds[xv].values[idx], ds[yv].values[idx]
+            ok = np.isfinite(x) & np.isfinite(y) & (y > 0) & (x > 0)
+            ax.plot(x[ok], y[ok], "-", color=c, lw=0.8, label=lab if ax is axes.flat[0] else None)
+            failed = ds["failure"].values[idx] != ""
+            mk = _MARKERS.get(method, "o")
+            ax.plot(x[ok & ~failed], y[ok & ~failed], mk, color=c, ms=3)
+            ax.plot(x[ok & failed], y[ok & failed], mk, mfc="none", color=c, ms=3)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+    floor = ds["asym_spread_last"].values
+    floor = floor[np.isfinite(floor)]
+    if floor.size:
+        axes.flat[3].axhline(float(np.median(floor)), color="0.4", ls=":", lw=0.8)
+        axes.flat[3].text(0.02, 0.04, "dotted: chaos floor (median)", transform=axes.flat[3].transAxes, fontsize=6)
+    axes.flat[0].text(0.02, 0.02, "dashed: exact solver", transform=axes.flat[0].transAxes, fontsize=7)
+    fig.legend(loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, -0.02))
+    fig.suptitle(r"Work-precision, $\gamma=%g$, $\mu=%g$ (hollow: long run failed)" % (ds.attrs["gamma"], ds.attrs["mu"]))
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    save(fig, outputs)
+
+
+def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
+    """One panel per method: for each setting (x) and start n0, a bar over the impact indices the run
+    covered and a marker at its end coloured by the failure category (shape: the curve, e.g. solver or
+    stiffness); right axis: the exact flight time 3/(mu n) at that index."""
+    from ..figures.common import WIDTH, plt, save
+
+    methods = list(dict.fromkeys(ds["method"].values.tolist()))
+    fig, axes = plt.subplots(1, len(methods), figsize=(WIDTH, 3.3), squeeze=False)
+    mu = float(ds.attrs["mu"])
+    shapes = "osD^vP*X"
+    seen = set()
+    top = float(ds["n_impacts"].max()) * 3
+    for ax, m in zip(axes[0], methods):
+        sub = ds.where(ds["method"] == m, drop=True)
+        curves = list(_curves(sub))
+        width = 10 ** (0.12 * (len(curves) - 1))
+        for j, (lab, _, idx) in enumerate(curves):
+            shift = 10 ** (0.12 * j) / math.sqrt(width)
+            mk = shapes[j % len(shapes)]
+            for i in idx:
+                x = float(sub["sweep_value"].values[i]) * shift
+                for k, n0 in enumerate(sub["start"].values):
+                    n_end = max(int(sub["n_impacts"].values[i, k]), 1)
+                    ax.plot([x, x], [max(int(n0), 1), n_end], "-", color="0.75", lw=1.2, zorder=1)
+                    f = str(sub["failure"].values[i, k])
+                    ax.plot(x, n_end, mk, color=CATEGORY_COLORS.get(f, "k"), ms=3.5, mec="k", mew=0.3, zorder=2,
+                            label=(f or "ran to the event budget") if f not in seen else None)
+                    seen.add(f)
+            ax.plot([], [], mk, color="w", mec="k", mew=0.6, ms=3.5, label=lab.replace(m, "").strip() or m)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(plt.NullFormatter())
+        ax.set_xlabel(str(sub["sweep_key"].values[0]))
+        ax.set_title(m, fontsize=8)
+        ax.set_ylim(0.8, top)
+        handles, labels = ax.get_legend_handles_labels()
+        shape_h = [(h, lab) for h, lab in zip(handles, labels) if h.get_markerfacecolor() == "w"]
+        if len(shape_h) > 1:
+            ax.legend(*zip(*shape_h), fontsize=5, loc="lower left", frameon=False, handlelength=1)
+        sec = ax.secondary_yaxis("right", functions=(lambda n: 3.0 / (mu * np.maximum(n, 1e-30)),
+                                                      lambda tau: 3.0 / (mu * np.maximum(tau, 1e-30))))
+        if ax is axes[0][-1]:
+            sec.set_ylabel(r"exact flight time $\approx 3/(\mu n)$")
+    axes[0][0].set_ylabel("impact index reached")
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if h.get_markerfacecolor() != "w" and lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, -0.02))
+    fig.suptitle(r"Stability map, $\gamma=%g$, $\mu=%g$: where each method stops and why" % (ds.attrs["gamma"], mu))
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    save(fig, outputs)

@@ -1,0 +1,259 @@
+"""Method "moreau-jean": Moreau--Jean event-capturing time-stepping (the scheme of the Siconos platform).
+
+No event location: every step of length h is a theta-method step of the
+measure differential inclusion, with the floor impulse p (on the lower mass
+only) solving a one-contact complementarity problem at velocity level with
+Newton's impact law.  With q = (x, y), v = (x', y'), unit masses and the
+linear forces f(q, v) = -K q - C v + b of eq. ``dimensionless-eq-motion``
+(K = [[1/2, -1/2], [-1/2, 1/2]], C = mu K / (1/2), b = (-gamma - 1/2, -gamma + 1/2)):
+
+    v_{k+1} - v_k = h [theta f(q_{k+1}, v_{k+1}) + (1 - theta) f(q_k, v_k)] + (p, 0),
+    q_{k+1}      = q_k + h [theta v_{k+1} + (1 - theta) v_k],
+
+i.e. W v_{k+1} = v_free-rhs + (p, 0) with the constant W = I + h theta C + h^2 theta^2 K.
+The contact is in the index set when the predicted gap x_k + g_p h x'_k <= 0
+(g_p = ``gap_prediction``, 1/2 as Siconos' default gamma), and then
+
+    0 <= U_{k+1} + e U_k  _|_  p >= 0,     U = x' (normal velocity), e = ``restitution``,
+
+which for one contact is the closed-form projection
+p = max(0, -(U_free + e U_k) / (W^-1)_{11}).  theta = 1/2 is second order on
+smooth motion; the impacts are located only to the step, so the method is first
+order overall.  It crosses accumulations (a resting contact is a run of steps
+with p > 0), which an event-driven scheme cannot do.
+
+Reported contacts: a contact is a maximal run of consecutive steps with p > 0;
+``t`` its start, estimated as t_k + x_k / |x'_k| clipped to [t_k - h, t_k + h]
+(the crossing of the pre-impact straight line; with the mid-step gap
+prediction x_k may already be below the floor by up to ~h |x'_k| / 2), ``xdot`` the
+normal velocity after the run's last impulse.  Failures:
+
+``energy_gain``      E - E_m after a contact run exceeds its running minimum by
+    more than ``energy_tol`` relative (default 1e-3).
+``endless_contact``  a contact run (constraint active with impulse) lasting longer
+    than ``max_contact`` (default 10 time units, > the paper's sticky t_c ~ 5.23).
+``fell_through``     x < -max_penetration (0.1) or a non-finite state.
+``budget``           process time over ``cpu_budget`` (checked every 2^18 steps).
+
+Setting: dt (default 1e-3), theta (0.5; 0.5..1), restitution (1.0: the paper's
+elastic floor), gap_prediction (0.5), max_contact, max_penetration, energy_tol,
+cpu_budget.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+from numba import njit
+
+from .base import FAILURES, MethodResult, MethodSpec
+from .penalty import sorted_samples, unsort
+
+DEFAULTS = {
+    "dt": 1e-3, "theta": 0.5, "restitution": 1.0, "gap_prediction": 0.5, "max_contact": 10.0,
+    "max_penetration": 0.1, "energy_tol": 1e-3, "cpu_budget": math.inf,
+}
+CHUNK = 1 << 18
+
+F_OK = FAILURES.index("")
+F_FELL = FAILURES.index("fell_through")
+F_GAIN = FAILURES.index("energy_gain")
+F_ENDLESS = FAILURES.index("endless_contact")
+
+X, U, Y, V, T_IN, E_MIN, X_MIN = range(7)
+N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE, N_IMPULSE = range(8)
+
+
+# numba's cache=True keys a kernel by its own file only, so the kernel's helpers live here (not imported
+# from penalty.py, whose edits would not invalidate this file's cached kernel)
+@njit(cache=True, inline="always")
+def energy_excess(x, u, y, v, gamma):
+    """E - E_m = xi'^2/2 + psi'^2/2 + (xi + gamma)^2/2 + gamma x."""
+    a = 0.5 * (v - u)
+    p = 0.5 * (v + u)
+    eta = 0.5 * ((y - x) - 1.0) + gamma
+    return 0.5 * (a * a + p * p + eta * eta) + gamma * x
+
+
+@njit(cache=True, inline="always")
+def hermite_value(y0, y1, d0, d1, s):
+    """Cubic Hermite interpolant on [0, 1] (values y0, y1, scaled slopes d0, d1) at s."""
+    s2 = s * s
+    s3 = s2 * s
+    return (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * d0 + (-2 * s3 + 3 * s2) * y1 + (s3 - s2) * d1
+
+
+def _matrices(gamma, mu, h, theta):
+    K = np.array([[0.5, -0.5], [-0.5, 0.5]])
+    C = np.array([[mu, -mu], [-mu, mu]])
+    b = np.array([-gamma - 0.5, -gamma + 0.5])
+    W = np.eye(2) + h * theta * C + h * h * theta * theta * K
+    return K, C, b, np.linalg.inv(W)
+
+
+@njit(cache=True)
+def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, Winv, n_steps, t_max, max_events, max_pen,
+             max_contact, energy_tol, t_out, v_out, e_out, dur_out, samples, y_samples):
+    x, u, y, v = fs[X], fs[U], fs[Y], fs[V]
+    w11, w12, w21, w22 = Winv[0, 0], Winv[0, 1], Winv[1, 0], Winv[1, 1]
+    n = ist[N_STEP]
+    ns = samples.shape[0]
+    for _ in range(n_steps):
+        t0 = n * h
+        if t0 >= t_max:
+            ist[DONE] = 1
+            break
+        # forces at step start: f = -K q - C v + b
+        d = 0.5 * (x - y)
+        dv = mu * (u - v)
+        f0x = -d - dv - gamma - 0.5
+        f0y = d + dv - gamma + 0.5
+        # K v_k, for q_{k+1} = q_k + h (1-theta) v_k + h theta v_{k+1} inside f_{k+1}
+        kvx = 0.5 * (u - v)
+        # rhs of W v_{k+1} = v_k + h theta (-K q_k - h (1-theta) K v_k + b) + h (1-theta) f_k + (p, 0)
+        rx = u + h * theta * (-d - h * (1.0 - theta) * kvx - gamma - 0.5) + h * (1.0 - theta) * f0x
+        ry = v + h * theta * (d + h * (1.0 - theta) * kvx - gamma + 0.5) + h * (1.0 - theta) * f0y
+        ufree = w11 * rx + w12 * ry
+        vfree = w21 * rx + w22 * ry
+        p = 0.0
+        if x + g_pred * h * u <= 0.0:  # index set: predicted gap closed
+            viol = ufree + e_rest * u
+            if viol < 0.0:
+                p = -viol / w11
+        u1 = ufree + w11 * p
+        v1 = vfree + w21 * p
+        x1 = x + h * ((1.0 - theta) * u + theta * u1)
+        y1 = y + h * ((1.0 - theta) * v + theta * v1)
+        n += 1
+        t1 = n * h
+        while ist[I_SAMPLE] < ns and samples[ist[I_SAMPLE]] <= t1:
+            ts = samples[ist[I_SAMPLE]]
+            if ts >= t0:
+                y_samples[ist[I_SAMPLE]] = hermite_value(y, y1, h * v, h * v1, (ts - t0) / h)
+            ist[I_SAMPLE] += 1
+        if not (abs(x1) < 1e300 and abs(u1) < 1e300) or x1 < -max_pen:
+            ist[FAIL] = F_FELL
+            ist[FAIL_IDX] = max(ist[N_CONTACT] - 1, 0) if ist[IN_CONTACT] else ist[N_CONTACT]
+            x, u, y, v = x1, u1, y1, v1
+            break
+        if x1 < fs[X_MIN]:
+            fs[X_MIN] = x1
+        if p > 0.0:
+            ist[N_IMPULSE] += 1
+            if ist[IN_CONTACT] == 0:
+                ist[IN_CONTACT] = 1
+                t_in = t0
+                if u < 0.0:  # crossing of the pre-impact straight line (x may already be < 0 by up to ~h|u|/2)
+                    t_in = t0 + min(max(x / -u, -h), h)
+                fs[T_IN] = t_in
+                t_out[ist[N_CONTACT]] = t_in
+                ist[N_CONTACT] += 1
+            elif t1 - fs[T_IN] > max_contact:
+                ist[FAIL] = F_ENDLESS
+                ist[FAIL_IDX] = ist[N_CONTACT] - 1
+                x, u, y, v = x1, u1, y1, v1
+                break
+        elif ist[IN_CONTACT] == 1:  # the run of impulses ended at the previous step
+            i = ist[N_CONTACT] - 1
+            v_out[i] = u
+            dur_out[i] = t0 - fs[T_IN]
+            e = energy_excess(x, u, y, v, gamma)
+            e_out[i] = e
+            ist[IN_CONTACT] = 0
+            if e - fs[E_MIN] > energy_tol * fs[E_MIN]:
+                ist[FAIL] = F_GAIN
+                ist[FAIL_IDX] = i
+                x, u, y, v = x1, u1, y1, v1
+                break
+            if e < fs[E_MIN]:
+                fs[E_MIN] = e
+            if ist[N_CONTACT] >= max_events:
+                ist[DONE] = 1
+                x, u, y, v = x1, u1, y1, v1
+                break
+        x, u, y, v = x1, u1, y1, v1
+    ist[N_STEP] = n
+    fs[X], fs[U], fs[Y], fs[V] = x, u, y, v
+
+
+def _setting(setting):
+    cfg = dict(DEFAULTS)
+    cfg.update(setting or {})
+    if not float(cfg["dt"]) > 0.0:
+        raise ValueError(f"dt must be > 0, got {cfg['dt']!r}")
+    if not 0.0 <= float(cfg["theta"]) <= 1.0:
+        raise ValueError(f"theta must be in [0, 1], got {cfg['theta']!r}")
+    return cfg
+
+
+_warm_done = False
+
+
+def _warm():
+    global _warm_done
+    if _warm_done:
+        return
+    fs = np.zeros(7)
+    fs[X] = 1e-3
+    fs[E_MIN] = 1.0
+    ist = np.zeros(8, dtype=np.int64)
+    buf = np.zeros(2)
+    _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, np.eye(2), 10, 1.0, 2, 0.1, 10.0, 1e-3,
+             buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1))
+    _warm_done = True
+
+
+def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
+    """Moreau--Jean time-stepping; see the module docstring for the setting keys."""
+    _warm()
+    cfg = _setting(setting)
+    st = initial.to_state(params) if hasattr(initial, "to_state") else initial
+    gamma, mu = params.gamma, params.mu
+    h, theta = float(cfg["dt"]), float(cfg["theta"])
+    _, _, _, Winv = _matrices(gamma, mu, h, theta)
+    samples, order = sorted_samples(sample_times)
+    y_s = np.full(samples.shape, np.nan)
+    t_out, v_out, e_out, dur_out = (np.full(max_events, np.nan) for _ in range(4))
+    fs = np.zeros(7)
+    fs[X], fs[U], fs[Y], fs[V] = st.x, st.xdot, st.y, st.ydot
+    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma)
+    fs[X_MIN] = st.x
+    ist = np.zeros(8, dtype=np.int64)
+    budget = float(cfg["cpu_budget"])
+    failure, failure_index = "", -1
+    start = time.process_time()
+    while True:
+        _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]), Winv,
+                 CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]), float(cfg["max_contact"]),
+                 float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s)
+        if ist[FAIL] != F_OK:
+            failure, failure_index = FAILURES[ist[FAIL]], int(ist[FAIL_IDX])
+            break
+        if ist[DONE]:
+            break
+        if time.process_time() - start > budget:
+            failure, failure_index = "budget", int(ist[N_CONTACT])
+            break
+    cpu = time.process_time() - start
+    n = int(ist[N_CONTACT])
+    y = None if order is None else unsort(y_s, order, np.shape(sample_times))
+    return MethodResult(
+        method="moreau-jean", setting=dict(setting or {}), t=t_out[:n].copy(), xdot=v_out[:n].copy(), cpu_time=cpu,
+        failure=failure, failure_index=failure_index, t_end=float(ist[N_STEP] * h), y=y,
+        extra={"steps": int(ist[N_STEP]), "impulse_steps": int(ist[N_IMPULSE]),
+               "contact_duration": dur_out[:n].copy(), "energy_excess": e_out[:n].copy(),
+               "min_x": float(fs[X_MIN]), "in_contact": bool(ist[IN_CONTACT])},
+    )
+
+
+METHOD = MethodSpec(
+    name="moreau-jean",
+    run=run,
+    settings_doc=(
+        "dt (1e-3); theta (0.5, in [0.5, 1]); restitution e (1.0: elastic floor); gap_prediction (0.5: active if "
+        "x + 0.5 h x' <= 0); max_contact (10 time units); max_penetration (0.1); energy_tol (1e-3 relative rise of "
+        "E - E_m after a contact); cpu_budget (process seconds, inf)"
+    ),
+)
