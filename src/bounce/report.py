@@ -2,7 +2,7 @@
 
 ReScience-style: a table (claim, paper reference, what was computed, expected,
 measured, tolerance, verdict, figure), a one-line verdict per paper figure and
-per theorem (the worst verdict among the rows that back it), a section per
+per theorem (not reproduced if any claim behind it is, see :func:`overall`), a section per
 check with its figure and numbers, and the errata.
 """
 
@@ -51,8 +51,21 @@ def load(check_files, figure_files, report_dir) -> list[CheckReport]:
     return reports
 
 
-def worst(verdicts) -> str:
-    return min((v.verdict for v in verdicts), key=ORDER.__getitem__, default=NOT_CHECKABLE)
+def overall(verdicts) -> str:
+    """not reproduced if any claim is; else reproduced if any is (saying how many parts are not
+    checkable); else not checkable."""
+    kinds = [v.verdict for v in verdicts]
+    if NOT_REPRODUCED in kinds:
+        return NOT_REPRODUCED
+    if REPRODUCED in kinds:
+        n = kinds.count(NOT_CHECKABLE)
+        return REPRODUCED + (f" ({n} part{'s' * (n > 1)} not checkable)" if n else "")
+    return NOT_CHECKABLE
+
+
+def _badge(verdict: str) -> str:
+    head = verdict.split(" (")[0]
+    return BADGE[head] + verdict[len(head):]
 
 
 ERRATA = "errata"
@@ -72,8 +85,9 @@ def summaries(reports, groups: dict) -> list[tuple[str, str, int]]:
     rows = [v for r in reports for v in r.verdicts if not is_erratum(r.name, v)]
     out = []
     for subject, refs in groups.items():
-        backing = [v for v in rows if any(ref in v.paper_ref for ref in refs)]
-        out.append((subject, worst(backing) if backing else NOT_CHECKABLE, len(backing)))
+        # a row backs the subject of its primary (first-named) paper reference
+        backing = [v for v in rows if any(ref in v.paper_ref.split(",")[0] for ref in refs)]
+        out.append((subject, overall(backing), len(backing)))
     return out
 
 
@@ -90,7 +104,7 @@ def markdown(reports, groups, meta: dict) -> str:
     lines += [f"**{counts[REPRODUCED]} reproduced, {counts[NOT_REPRODUCED]} not reproduced, "
               f"{counts[NOT_CHECKABLE]} not checkable** (of {len(all_rows)} claims).", ""]
     lines += ["## Overall verdict per figure and per theorem", "", "| subject | verdict | claims |", "|---|---|---|"]
-    lines += [f"| {s} | {BADGE[v]} | {n} |" for s, v, n in summaries(reports, groups)]
+    lines += [f"| {s} | {_badge(v)} | {n} |" for s, v, n in summaries(reports, groups)]
     lines += ["", "## All claims", "",
               "| claim | paper | computed | expected | measured | tolerance | verdict | figure |",
               "|---|---|---|---|---|---|---|---|"]
@@ -131,7 +145,7 @@ def to_html(reports, groups, meta: dict) -> str:
              "<h2>Overall verdict per figure and per theorem</h2><table><tr><th>subject</th><th>verdict</th>"
              "<th>claims</th></tr>"]
     for s, v, n in summaries(reports, groups):
-        parts.append(f"<tr class='{v.replace(' ', '-')}'><td>{e(s)}</td><td>{e(v)}</td><td>{n}</td></tr>")
+        parts.append(f"<tr class='{v.split(' (')[0].replace(' ', '-')}'><td>{e(s)}</td><td>{e(v)}</td><td>{n}</td></tr>")
     parts.append("</table><h2>All claims</h2><table><tr>" + "".join(
         f"<th>{h}</th>" for h in ("claim", "paper", "computed", "expected", "measured", "tolerance", "verdict",
                                   "figure")) + "</tr>")

@@ -326,7 +326,7 @@ def run(spec: dict, inputs: list) -> xr.Dataset:
         few = int(cfg["few_impacts"])
         verdicts.append(Verdict(
             "The over-damped spring shrinks for the first few impacts, then expands, approaching its equilibrium "
-            "length monotonically from below", "sec. 8.1, figs. very_rigid_poincare_overdamped(_magni)",
+            "length monotonically from below", "figs. very_rigid_poincare_overdamped(_magni), sec. 8.1",
             f"{ctx}: y - y_eq (= spring length - its equilibrium, x = 0) at the impacts: n0 = first impact from "
             "which it is < 0 and increasing at every later impact; impact of the minimum; sign changes",
             f"n0 and the minimum within the first few ({few}) impacts, then no sign change of y - y_eq or of its "
