@@ -164,8 +164,8 @@ def test_contact_switch_converges_as_delta_to_zero():
     (a factor >= 30 per decade of delta) and the energy left out ~ delta^2/4; each switch removes exactly
     Xdot^2/4 (y, y' kept, x' -> 0)."""
     p, ini = drop(0.01, 0.01, 6.0)
-    T = 3000.0
-    ex = simulate(p, ini, max_events=500_000, t_max=T)
+    T = 3500.0  # the switch at delta = 1e-5 comes at n ~ 3 gamma/(mu delta) = 3e5, t ~ (3/mu) ln(n/4.2) ~ 3360
+    ex = simulate(p, ini, max_events=1_000_000, t_max=T)
     grid = np.linspace(0.0, T, 5001)
     from bounce.sampling import sample_trajectory
 
@@ -173,8 +173,12 @@ def test_contact_switch_converges_as_delta_to_zero():
     y_ex = p.y_eq + s_ex["y_minus_yeq"]
     e_ex = contact_switch.energy_excess_samples(s_ex, p.gamma)
     errs, e_errs = [], []
-    for delta in (1e-2, 1e-3, 1e-4):
-        res = contact_switch.run(p, ini, {"delta": delta}, max_events=500_000, t_max=T, sample_times=grid)
+    # delta must stay below the speeds of the chaotic transient's macroscopic impacts (down to ~7e-3
+    # here, depending on the rounding history): only then does the switch happen in the asymptotic
+    # regime, where the delta^2 law holds
+    deltas = (1e-3, 1e-4, 1e-5)
+    for delta in deltas:
+        res = contact_switch.run(p, ini, {"delta": delta}, max_events=1_000_000, t_max=T, sample_times=grid)
         assert res.extra["n_switches"] >= 1 and res.extra["stop_reason"] == "sticky_forever"
         u = res.xdot[-1]  # the switching impact
         assert u < delta
@@ -183,8 +187,8 @@ def test_contact_switch_converges_as_delta_to_zero():
         errs.append(np.nanmax(np.abs(res.y - y_ex)))
         e_errs.append(np.nanmax(np.abs(contact_switch.energy_excess_samples(res.extra["samples"], p.gamma) - e_ex)))
     assert errs[0] > 30 * errs[1] > 900 * errs[2], errs
-    assert errs[0] < 1e-2 / p.gamma * 1.0  # delta^2/gamma with delta = 1e-2
-    for delta, e in zip((1e-2, 1e-3, 1e-4), e_errs):
+    assert errs[0] < deltas[0] ** 2 / p.gamma  # measured 0.36 delta^2/gamma
+    for delta, e in zip(deltas, e_errs):
         assert e <= 1.5 * delta**2 / 4.0, (delta, e)
 
 
