@@ -285,7 +285,7 @@ def _first_over(a, b, thr):
 
 def run_scene(name, cfg, args, notes):
     import mpmath
-    from bounce import Parameters, State, simulate
+    from bounce import Parameters, State
 
     gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]
     params = Parameters(gamma, mu)
@@ -341,7 +341,7 @@ def run_scene(name, cfg, args, notes):
     rows = []
     for method, n, ws, rs, err in (
         ("bounce", n_imp, walls, rates, err_b),
-        (f"bounce, same K", K, wallsK, ratesK, err_b),
+        ("bounce, same K", K, wallsK, ratesK, err_b),
         ("scipy DOP853 1e-12", K, s_walls, s_rates, err_s),
     ):
         rows.append({

@@ -39,13 +39,11 @@ from numba import njit
 
 from .flight import (
     EPS,
-    FAILED,
     FOUND,
     HORIZON,
     NEVER,
     first_contact,
     liftoff_time,
-    oscillator_derivatives,
 )
 from .oscillator import P_MU, P_RHO
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight

@@ -24,7 +24,6 @@ SQRT2 = math.sqrt(2.0)
 @njit(cache=True)
 def _sample(times, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0, gamma, t_valid,
             params, coefs, sparams, scoefs, out_x, out_xdot, out_ydev, out_ydot):
-    n_ev = t_ev.shape[0]
     for j in range(times.shape[0]):
         ts = times[j]
         if not (ts >= 0.0 and ts <= t_valid):

@@ -473,7 +473,6 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         "central difference of L along a flight of the jump run vs own exact form -2 mu eta^2 + 2 mu xi' (psi' + 2 mu eta)",
         f"{dL_exact:.10g} (the O(xi') term is 2 mu xi'(psi' + 2 mu eta))", f"{dL:.10g}",
         "1e-6 relative (central difference, h = 1e-4 tau)", abs(dL - dL_exact) <= 1e-6 * (abs(dL_exact) + 1e-12)))
-    xi_end = float(tr.eta[-1] - g)
     rows.append(_row(
         "Typos in the proofs of lem:xi(t)-goes-to-0: 'lim_{t->0} xi'(t) = 0' and '|xi(t) - gamma| bounded away from 0'",
         "sec. 6, proof of lem:xi(t)-goes-to-0",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import WIDTH, label_time, plt, save
+from .common import WIDTH, plt, save
 
 
 def _regime(ds):

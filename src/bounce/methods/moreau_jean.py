@@ -48,8 +48,8 @@ import time
 import numpy as np
 from numba import njit
 
+from ._stepping import energy_excess, hermite_value, sorted_samples, unsort
 from .base import FAILURES, MethodResult, MethodSpec
-from .penalty import sorted_samples, unsort
 
 DEFAULTS = {
     "dt": 1e-3, "theta": 0.5, "restitution": 1.0, "gap_prediction": 0.5, "max_contact": 10.0,
@@ -64,25 +64,6 @@ F_ENDLESS = FAILURES.index("endless_contact")
 
 X, U, Y, V, T_IN, E_MIN, X_MIN = range(7)
 N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE, N_IMPULSE = range(8)
-
-
-# numba's cache=True keys a kernel by its own file only, so the kernel's helpers live here (not imported
-# from penalty.py, whose edits would not invalidate this file's cached kernel)
-@njit(cache=True, inline="always")
-def energy_excess(x, u, y, v, gamma):
-    """E - E_m = xi'^2/2 + psi'^2/2 + (xi + gamma)^2/2 + gamma x."""
-    a = 0.5 * (v - u)
-    p = 0.5 * (v + u)
-    eta = 0.5 * ((y - x) - 1.0) + gamma
-    return 0.5 * (a * a + p * p + eta * eta) + gamma * x
-
-
-@njit(cache=True, inline="always")
-def hermite_value(y0, y1, d0, d1, s):
-    """Cubic Hermite interpolant on [0, 1] (values y0, y1, scaled slopes d0, d1) at s."""
-    s2 = s * s
-    s3 = s2 * s
-    return (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * d0 + (-2 * s3 + 3 * s2) * y1 + (s3 - s2) * d1
 
 
 def _matrices(gamma, mu, h, theta):

@@ -56,6 +56,7 @@ import time
 import numpy as np
 from numba import njit
 
+from ._stepping import energy_excess, hermite_value, sorted_samples, unsort
 from .base import FAILURES, MethodResult, MethodSpec
 
 DEFAULTS = {
@@ -74,15 +75,6 @@ F_ENDLESS = FAILURES.index("endless_contact")
 X, U, Y, V, AX, AY, T_IN, E_MIN, X_MIN = range(9)
 # int state slots
 N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE = range(7)
-
-
-@njit(cache=True, inline="always")
-def energy_excess(x, u, y, v, gamma):
-    """E - E_m = xi'^2/2 + psi'^2/2 + (xi + gamma)^2/2 + gamma x (no spring energy of the floor)."""
-    a = 0.5 * (v - u)
-    p = 0.5 * (v + u)
-    eta = 0.5 * ((y - x) - 1.0) + gamma
-    return 0.5 * (a * a + p * p + eta * eta) + gamma * x
 
 
 @njit(cache=True, inline="always")
@@ -105,13 +97,6 @@ def hermite_root(x0, x1, d0, d1):
     s2 = s * s
     dp = (6 * s2 - 6 * s) * x0 + (3 * s2 - 4 * s + 1) * d0 + (-6 * s2 + 6 * s) * x1 + (3 * s2 - 2 * s) * d1
     return s, dp
-
-
-@njit(cache=True, inline="always")
-def hermite_value(y0, y1, d0, d1, s):
-    s2 = s * s
-    s3 = s2 * s
-    return (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * d0 + (-2 * s3 + 3 * s2) * y1 + (s3 - s2) * d1
 
 
 @njit(cache=True)
@@ -208,21 +193,6 @@ def accelerations(x, u, y, v, gamma, mu, k, c):
     ax = -mu * u - 0.5 * x - gamma - 0.5 + 0.5 * y + mu * v + fc
     ay = -mu * v - 0.5 * y - gamma + 0.5 + 0.5 * x + mu * u
     return ax, ay
-
-
-def sorted_samples(sample_times):
-    """(sorted sample times, order) or (empty array, None)."""
-    if sample_times is None:
-        return np.empty(0), None
-    s = np.asarray(sample_times, dtype=float).ravel()
-    order = np.argsort(s, kind="stable")
-    return np.ascontiguousarray(s[order]), order
-
-
-def unsort(values, order, shape):
-    out = np.empty_like(values)
-    out[order] = values
-    return out.reshape(shape)
 
 
 def _setting(setting):
