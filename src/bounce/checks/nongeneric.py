@@ -400,8 +400,8 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         _, v_tol, _, _ = classifier_window(sticky["scale"][i], acc, jerk)
         tr = simulate(Parameters(g, m), s, max_events=1)
         msg += (f"; there the exact speed of the rounded start state is |x'| = {abs(float(ex[1])):.3g} < v_tol = "
-                f"{v_tol:.3g}, but the simulator's contact speed is {abs(tr.xdot[0]):.3g} (the Newton polish of "
-                f"flight.first_contact updates v with x'' built from S'(t + dt) and S''(t): error ~ |xi(t) S''| dt^2)")
+                f"{v_tol:.3g}, but the simulator's contact speed is {abs(tr.xdot[0]):.3g} (a regression of this kind "
+                f"once came from the Newton polish of flight.first_contact; see tests/test_checks_part2.py)")
     verdicts.append(Verdict(
         claim="A state backward-evolved from a sticky onset reaches the floor in a sticky event at t = T",
         paper_ref="eqs. sticky-condition, sticky-cond-Y; sec. 7 (states on S reached by T^-)",
