@@ -157,3 +157,13 @@ def test_rest_on_floor_pulled_up_lifts_off(gamma, mu):
     with mp.workdps(R.DPS):
         err = abs((mpf(tr.t[0]) - tau) / tau)
     assert err <= REL_FLIGHT, f"first impact at {tr.t[0]!r}, reference {mp.nstr(tau, 20)}: rel err {float(err):.2e}"
+
+
+def test_stiff_overdamped_sticky_phase_is_proved_infinite():
+    """Regression: mu = 27.6 (sticky oscillator strongly over-damped).  For mu >= sqrt(2) every sticky
+    event is infinite (F - its envelope never returns to 0); the proof once ran out of steps because the
+    curvature bounds of t = 0, dominated by the fast mode, were never refreshed."""
+    p = Parameters(6.089470548226049e-08, 27.606486975110645)
+    tr = simulate(p, Deviations(x=0.0, xdot=0.0, xidot=-0.04008136490537849, eta=2.2130114781993875),
+                  max_events=5, t_max=1e4)
+    assert tr.kind_names == ("sticky_start",) and tr.stop_reason == "sticky_forever"

@@ -120,7 +120,7 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
             return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
         # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
         s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
-    status, s, _, _, omc, _, _, _, S, Sd = first_contact(
+    status, s, _, _, omc, _, _, _, S, Sd, _ = first_contact(
         s_start, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
     )
     if status != FOUND:
@@ -222,7 +222,7 @@ def run_events(
                     stop = STOP_TIME
                     break
             if status == HANDOVER:
-                status, tau, v, scale, omc, tms, omsd, c, S, Sd = first_contact(
+                status, tau, v, scale, omc, tms, omsd, c, S, Sd, _ = first_contact(
                     t_start, t_limit, x0, u, a, eta, gamma, params, coefs
                 )
                 if status != FOUND:

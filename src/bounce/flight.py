@@ -38,7 +38,9 @@ root the bound is a parabola tangent to x, so the march converges quadratically
 far below B (near sticky onsets, chattering) the global bound would crawl, so
 each step also tries the local bound x'' >= x''(t_k) - M3 h on a window
 [t_k, t_k + h] (M3 bounds |xi'''| as M2 bounds |xi''|), h doubling from the
-last step, and takes the larger of the two certified steps.  It stops when
+last step, and takes the larger of the two certified steps.  When a step passes a
+local minimum of x (x' turns from negative to non-negative), the minimum is located
+and, if it lies within rounding of the floor, reported as a (tangential) contact.  It stops when
 x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
 polishes the root.  The only roots that can be missed are dips of x below the
 floor shallower than its rounding error, which no float64 computation can see.
@@ -111,12 +113,35 @@ def _envelope_below(level, x, v):
 
 
 @njit(cache=True)
+def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
+    """Time of the minimum of x between t0 (x' = v0 < 0, x'' = A0) and t1 (x' >= 0): Newton on x',
+    kept inside the bracket (bisection when a step would leave it)."""
+    lo, hi = t0, t1
+    t = t0 - v0 / A0 if A0 > 0.0 else 0.5 * (t0 + t1)
+    for _ in range(40):
+        if not lo < t < hi:
+            t = 0.5 * (lo + hi)
+        _, v, _, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        if v < 0.0:
+            lo = t
+        else:
+            hi = t
+        A = -g + xi0 * Sd - a * (-2.0 * mu * Sd - S)
+        step = -v / A if A > 0.0 else 0.0
+        if step == 0.0 or abs(step) <= 4.0 * EPS * t:
+            break
+        t += step
+    return t
+
+
+@njit(cache=True)
 def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     """First t in (t_start, t_limit] with x(t) = 0, for the flight of eq. (F).
 
     Requires x > 0 on (0, t_start] (t_start = 0 needs x0 > 0 or u > 0).
-    Returns ``(status, t, v, scale, omc, tms, omsd, c, S, Sd)``: x'(t), the
-    rounding scale of x and the oscillator parts at t.  Status FOUND: the
+    Returns ``(status, t, v, scale, omc, tms, omsd, c, S, Sd, x)``: x'(t), the
+    rounding scale of x, the oscillator parts at t and x(t) itself (at FOUND the
+    residual of the rounded root: the exact root is t - x/v).  Status FOUND: the
     polished root (the parts are carried to it by a first-order update, exact to
     O(dt^2) with dt at the rounding level); HORIZON: no contact before t_limit;
     NEVER: contact proved impossible (bounded mode g = 0, u + a = 0: the
@@ -139,7 +164,7 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     s = 0.0
     for _ in range(MAX_STEPS):
         if bounded and _envelope_below(level, x, v):
-            return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd
+            return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd, x
         # window of the local bound: twice the last step or the Newton distance
         h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
         s = safe_step(x, v, B)
@@ -148,22 +173,38 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         h = max(h, 2.0 * s)
         s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
         if t + s > t_limit:
-            return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd
+            return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd, x
         t_new = t + s
         if t_new == t:
             break
+        t_prev, v_prev, A_prev = t, v, A
         t = t_new
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
         if x <= 4.0 * EPS * scale:
             break
+        if v_prev < 0.0 <= v:
+            # stepped over a local minimum of x: if it lies within rounding of the floor it is a
+            # tangential contact (grazing or sticky onset), indistinguishable from a true one
+            tm = _minimum(t_prev, v_prev, A_prev, t, x0, u, a, eta, g, mu, xi0, params, coefs)
+            xm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m = gap(tm, x0, u, a, eta, g, params, coefs)
+            if xm <= 4.0 * EPS * sm:
+                return FOUND, tm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m, xm
+        # the energy bounds hold from any time on: refresh them at t (a stiff oscillator's fast
+        # mode dominates the bounds of t = 0 but is gone soon after)
+        z1 = -xi0 * S + a * Sd
+        z2 = -(xi0 * c + a * S) - 2.0 * mu * z1
+        z3 = -z1 - 2.0 * mu * z2
+        z4 = -z2 - 2.0 * mu * z3
+        B = min(B, (g + derivative_bound(z1, z2, z3)) * B_MARGIN)
+        M3 = min(M3, derivative_bound(z2, z3, z4) * B_MARGIN)
     else:
-        return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd
+        return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd, x
     if v < 0.0:
         # Newton polish (x is at the rounding level); re-evaluated at the polished time, since
         # near a tangency the step is not negligible (a first-order update would bias x')
         t = t - x / v
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
-    return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd
+    return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd, x
 
 
 @njit(cache=True)
