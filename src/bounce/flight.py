@@ -59,6 +59,8 @@ EPS = 2.220446049250313e-16
 B_MARGIN = 1.0 + 1e-12
 #: cap on safe steps per flight (a crawl towards a tangency needs ~1e3).
 MAX_STEPS = 200_000
+#: steps after which the curvature bounds are refreshed at every step (long marches only)
+REFRESH_AFTER = 64
 
 # statuses of first_contact
 FOUND, HORIZON, NEVER, FAILED = 0, 1, 2, 3
@@ -162,7 +164,7 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     else:
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
     s = 0.0
-    for _ in range(MAX_STEPS):
+    for it in range(MAX_STEPS):
         if bounded and _envelope_below(level, x, v):
             return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd, x
         # window of the local bound: twice the last step or the Newton distance
@@ -189,8 +191,10 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
             xm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m = gap(tm, x0, u, a, eta, g, params, coefs)
             if xm <= 4.0 * EPS * sm:
                 return FOUND, tm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m, xm
-        # the energy bounds hold from any time on: refresh them at t (a stiff oscillator's fast
-        # mode dominates the bounds of t = 0 but is gone soon after)
+        if it < REFRESH_AFTER:
+            continue
+        # a long march: the energy bounds hold from any time on, so refresh them at t (a stiff
+        # oscillator's fast mode dominates the bounds of t = 0 but is gone soon after)
         z1 = -xi0 * S + a * Sd
         z2 = -(xi0 * c + a * S) - 2.0 * mu * z1
         z3 = -z1 - 2.0 * mu * z2

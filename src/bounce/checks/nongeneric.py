@@ -384,7 +384,25 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
     terr = np.abs(sticky["t_first"] - sticky["T"])
     ok_time = terr <= 2.0 * sticky["window"]
     bad = np.flatnonzero(~(ok_kind & ok_time))
-    msg = f"{int((ok_kind & ok_time).sum())}/{ok_kind.size} sticky_start at |t - T| <= 2 delta3"
+    # Rounding the constructed start to float64 moves it off the sticky plane; where the exact
+    # (50-digit) flight of the *rounded* start then hits the floor faster than the classifier's
+    # window v_tol, an impact is the right answer.  Only the other cases are failures.
+    off_plane = []
+    for i in bad:
+        s_i = sticky["starts"][i]
+        g_i, m_i = float(sticky["gamma"][i]), float(sticky["mu"][i])
+        if sticky["first_kind"][i] != IMPACT:
+            continue
+        with mp.workdps(50):
+            ex = flight_mp(s_i.x, s_i.xdot, s_i.xidot, s_i.eta, g_i, m_i, sticky["t_first"][i])
+            acc_i, jerk_i = contact_derivatives(float(ex[2]), float(ex[3]), g_i, m_i)
+        xn_i, v_tol_i, _, _ = classifier_window(sticky["scale"][i], acc_i, jerk_i)
+        # the rounded start really meets the floor there (x = 0 to rounding), faster than v_tol
+        if abs(float(ex[0])) <= 10.0 * xn_i and abs(float(ex[1])) > v_tol_i:
+            off_plane.append(i)
+    bad = np.setdiff1d(bad, np.array(off_plane, dtype=bad.dtype))
+    msg = (f"{int((ok_kind & ok_time).sum())}/{ok_kind.size} sticky_start at |t - T| <= 2 delta3; "
+           f"{len(off_plane)} impacts where the rounded start's exact contact speed exceeds v_tol (correct)")
     if bad.size:
         i = int(bad[0])
         s = sticky["starts"][i]
@@ -407,7 +425,8 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         paper_ref="eqs. sticky-condition, sticky-cond-Y; sec. 7 (states on S reached by T^-)",
         computed=f"{ok_kind.size} random onsets (alpha/gamma log-uniform in {spec.get('alpha_over_gamma', [1e-3, 10])}),"
                  " backward flight by T < 2 alpha/gamma (mpmath, 40 digits), rounded to float64, simulated forward",
-        expected="first event sticky_start at t = T",
+        expected="first event sticky_start at t = T (or an impact, if the exact flight of the rounded start "
+                 "reaches the floor faster than the classifier's window v_tol)",
         measured=msg,
         tolerance="|t - T| <= 2 delta3, delta3 = (6 xn/|x'''|)^(1/3) the classifier's hidden window at xn = 4 eps "
                   "scale (doubled: the rounded start state moves the tangency by as much)",
