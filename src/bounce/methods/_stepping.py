@@ -1,9 +1,41 @@
-"""Helpers shared by the time-stepping methods (penalty, Moreau-Jean)."""
+"""Helpers shared by the time-stepping methods (penalty, Moreau-Jean): failure codes, the
+integer state slots of their kernels, the chunked driver with its CPU budget, energy and
+interpolation kernels."""
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 from numba import njit
+
+from .base import FAILURES
+
+F_OK = FAILURES.index("")
+F_FELL = FAILURES.index("fell_through")
+F_GAIN = FAILURES.index("energy_gain")
+F_ENDLESS = FAILURES.index("endless_contact")
+#: integer state slots common to the kernels (a kernel may append its own)
+N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE = range(7)
+N_COMMON_SLOTS = 7
+
+
+def drive(advance, ist, budget: float) -> tuple[str, int, float]:
+    """Call ``advance()`` (one chunk of steps) until a failure, completion or the CPU ``budget``
+    (process seconds); return (failure, failure index, CPU time)."""
+    failure, index = "", -1
+    start = time.process_time()
+    while True:
+        advance()
+        if ist[FAIL] != F_OK:
+            failure, index = FAILURES[ist[FAIL]], int(ist[FAIL_IDX])
+            break
+        if ist[DONE]:
+            break
+        if time.process_time() - start > budget:
+            failure, index = "budget", int(ist[N_CONTACT])
+            break
+    return failure, index, time.process_time() - start
 
 
 @njit(cache=True, inline="always")

@@ -43,13 +43,15 @@ cpu_budget.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 from numba import njit
 
-from ._stepping import energy_excess, hermite_value, sorted_samples, unsort
-from .base import FAILURES, MethodResult, MethodSpec
+from ._stepping import (
+    DONE, F_ENDLESS, F_FELL, F_GAIN, FAIL, FAIL_IDX, I_SAMPLE, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
+    drive, energy_excess, hermite_value, sorted_samples, unsort,
+)
+from .base import MethodResult, MethodSpec
 
 DEFAULTS = {
     "dt": 1e-3, "theta": 0.5, "restitution": 1.0, "gap_prediction": 0.5, "max_contact": 10.0,
@@ -57,13 +59,9 @@ DEFAULTS = {
 }
 CHUNK = 1 << 18
 
-F_OK = FAILURES.index("")
-F_FELL = FAILURES.index("fell_through")
-F_GAIN = FAILURES.index("energy_gain")
-F_ENDLESS = FAILURES.index("endless_contact")
-
+# float state slots; int slots: those of _stepping plus
 X, U, Y, V, T_IN, E_MIN, X_MIN = range(7)
-N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE, N_IMPULSE = range(8)
+N_IMPULSE = N_COMMON_SLOTS  # steps with a nonzero impulse
 
 
 def _matrices(gamma, mu, h, theta):
@@ -179,7 +177,7 @@ def _warm():
     fs = np.zeros(7)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
-    ist = np.zeros(8, dtype=np.int64)
+    ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     buf = np.zeros(2)
     _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, np.eye(2), 10, 1.0, 2, 0.1, 10.0, 1e-3,
              buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1))
@@ -201,23 +199,14 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     fs[X], fs[U], fs[Y], fs[V] = st.x, st.xdot, st.y, st.ydot
     fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma)
     fs[X_MIN] = st.x
-    ist = np.zeros(8, dtype=np.int64)
+    ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     budget = float(cfg["cpu_budget"])
-    failure, failure_index = "", -1
-    start = time.process_time()
-    while True:
-        _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]), Winv,
+    failure, failure_index, cpu = drive(
+        lambda: _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]), Winv,
                  CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]), float(cfg["max_contact"]),
-                 float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s)
-        if ist[FAIL] != F_OK:
-            failure, failure_index = FAILURES[ist[FAIL]], int(ist[FAIL_IDX])
-            break
-        if ist[DONE]:
-            break
-        if time.process_time() - start > budget:
-            failure, failure_index = "budget", int(ist[N_CONTACT])
-            break
-    cpu = time.process_time() - start
+                 float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s),
+        ist, budget,
+    )
     n = int(ist[N_CONTACT])
     y = None if order is None else unsort(y_s, order, np.shape(sample_times))
     return MethodResult(

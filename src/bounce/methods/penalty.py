@@ -51,13 +51,15 @@ the exit crossing).  Failures:
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 from numba import njit
 
-from ._stepping import energy_excess, hermite_value, sorted_samples, unsort
-from .base import FAILURES, MethodResult, MethodSpec
+from ._stepping import (
+    DONE, F_ENDLESS, F_FELL, F_GAIN, FAIL, FAIL_IDX, I_SAMPLE, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
+    drive, energy_excess, hermite_value, sorted_samples, unsort,
+)
+from .base import MethodResult, MethodSpec
 
 DEFAULTS = {
     "stiffness": 1.0e6, "damping": 0.0, "dt": None, "omega_dt": 0.1, "max_penetration": 0.1,
@@ -65,16 +67,8 @@ DEFAULTS = {
 }
 CHUNK = 1 << 18  # steps between budget checks (~ 1-3 ms)
 
-# failure codes of the kernels (index into base.FAILURES)
-F_OK = FAILURES.index("")
-F_FELL = FAILURES.index("fell_through")
-F_GAIN = FAILURES.index("energy_gain")
-F_ENDLESS = FAILURES.index("endless_contact")
-
-# float state slots
+# float state slots (the int slots are those of _stepping)
 X, U, Y, V, AX, AY, T_IN, E_MIN, X_MIN = range(9)
-# int state slots
-N_STEP, IN_CONTACT, N_CONTACT, I_SAMPLE, FAIL, FAIL_IDX, DONE = range(7)
 
 
 @njit(cache=True, inline="always")
@@ -216,7 +210,7 @@ def _warm():
     fs = np.zeros(9)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
-    ist = np.zeros(7, dtype=np.int64)
+    ist = np.zeros(N_COMMON_SLOTS, dtype=np.int64)
     buf = np.zeros(2)
     _advance(fs, ist, 0.01, 0.01, 1e4, 0.0, 1e-3, 10, 1.0, 2, 0.1, 10.0, 1e-3, buf, buf.copy(), buf.copy(),
              buf.copy(), np.zeros(1), np.zeros(1))
@@ -238,23 +232,14 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     fs[AX], fs[AY] = accelerations(st.x, st.xdot, st.y, st.ydot, gamma, mu, k, c)
     fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma)
     fs[X_MIN] = st.x
-    ist = np.zeros(7, dtype=np.int64)
+    ist = np.zeros(N_COMMON_SLOTS, dtype=np.int64)
     ist[IN_CONTACT] = 1 if st.x < 0.0 else 0
     budget = float(cfg["cpu_budget"])
-    failure, failure_index = "", -1
-    start = time.process_time()
-    while True:
-        _advance(fs, ist, gamma, mu, k, c, dt, CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]),
-                 float(cfg["max_contact"]), float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s)
-        if ist[FAIL] != F_OK:
-            failure, failure_index = FAILURES[ist[FAIL]], int(ist[FAIL_IDX])
-            break
-        if ist[DONE]:
-            break
-        if time.process_time() - start > budget:
-            failure, failure_index = "budget", int(ist[N_CONTACT])
-            break
-    cpu = time.process_time() - start
+    failure, failure_index, cpu = drive(
+        lambda: _advance(fs, ist, gamma, mu, k, c, dt, CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]),
+                 float(cfg["max_contact"]), float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s),
+        ist, budget,
+    )
     n = int(ist[N_CONTACT])
     t_end = float(ist[N_STEP] * dt)
     y = None if order is None else unsort(y_s, order, np.shape(sample_times))
