@@ -43,7 +43,10 @@ from .flight import (
     HORIZON,
     NEVER,
     first_contact,
+    flight_spring,
     liftoff_time,
+    oscillator_at,
+    xi_derivatives,
 )
 from .oscillator import P_MU, P_RHO
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight
@@ -125,8 +128,7 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
     )
     if status != FOUND:
         return status, s * SQRT2, a, eta
-    eta_d = eta - eta * omc + es0 * S
-    es_d = -eta * S + es0 * Sd
+    eta_d, es_d = oscillator_at(eta, es0, omc, S, Sd)
     return FOUND, s * SQRT2, es_d / SQRT2, eta_d
 
 
@@ -228,18 +230,15 @@ def run_events(
                 if status != FOUND:
                     stop = STOP_TIME if status == HORIZON else STOP_FAILED
                     break
-                # xi(tau) + gamma as eta c + a S + gamma (1 - c): for long flights (1 - c = O(1)) the
-                # form eta + (xi(tau) - xi(0)) of short flights would cancel eta against eta (1 - c)
-                eta_t = eta * c + a * S + gamma * omc
-                xid_t = (gamma - eta) * S + a * Sd  # xi'(tau)
+                eta_t, xid_t = flight_spring(eta, a, gamma, omc, c, S, Sd)  # xi(tau) + gamma, xi'(tau)
             else:
                 eta_t = eta + dxi  # short flight: xi(tau) + gamma from the small displacement
             x0 = 0.0
             t_start = 0.0
             # x'' = -gamma - xi'' and x''' = -xi''' just before the contact
-            xidd = -(eta_t - gamma) - 2.0 * mu * xid_t
+            _, xidd, xiddd, _ = xi_derivatives(eta_t - gamma, xid_t, mu)
             acc = -gamma - xidd
-            jerk = xid_t + 2.0 * mu * xidd
+            jerk = -xiddd
             xn = 4.0 * EPS * scale + 1e-300
             if not _is_tangential(v, acc, jerk, xn):
                 kind = IMPACT  # eq. collision-rule: psi' <-> xi'

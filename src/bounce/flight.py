@@ -67,14 +67,28 @@ FOUND, HORIZON, NEVER, FAILED = 0, 1, 2, 3
 
 
 @njit(cache=True)
-def oscillator_derivatives(u, a, eta, g, mu):
-    """xi', xi'', xi''', xi'''' at the start of a flight (xi(0) = eta - g)."""
-    xi0 = eta - g
-    z1 = a
-    z2 = -xi0 - 2.0 * mu * z1
-    z3 = -z1 - 2.0 * mu * z2
+def xi_derivatives(xi, xid, mu):
+    """xi', xi'', xi''', xi'''' from xi and xi' by xi'' = -xi - 2 mu xi' (eq. eq-motion-psi-xi)."""
+    z2 = -xi - 2.0 * mu * xid
+    z3 = -xid - 2.0 * mu * z2
     z4 = -z2 - 2.0 * mu * z3
-    return z1, z2, z3, z4
+    return xid, z2, z3, z4
+
+
+@njit(cache=True)
+def flight_spring(eta, a, g, omc, c, S, Sd):
+    """(eta(t), xi'(t)) of a flight from (a = xi', eta = xi + g) by the oscillator parts at t.
+
+    eta(t) = eta c + a S + g (1 - c): for long flights (1 - c = O(1)) this keeps the
+    digits that eta + (xi(t) - xi(0)) would cancel.
+    """
+    return eta * c + a * S + g * omc, (g - eta) * S + a * Sd
+
+
+@njit(cache=True)
+def oscillator_at(z0, zd0, omc, S, Sd):
+    """(z(t), z'(t)) of the unit oscillator from (z0, z0') by its parts at t (z0 c = z0 - z0 (1 - c))."""
+    return z0 - z0 * omc + zd0 * S, -z0 * S + zd0 * Sd
 
 
 @njit(cache=True)
@@ -128,7 +142,8 @@ def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
             lo = t
         else:
             hi = t
-        A = -g + xi0 * Sd - a * (-2.0 * mu * Sd - S)
+        xi_t, xid_t = oscillator_at(xi0, a, omc, S, Sd)
+        A = -g - xi_derivatives(xi_t, xid_t, mu)[1]  # x'' = -g - xi''
         step = -v / A if A > 0.0 else 0.0
         if step == 0.0 or abs(step) <= 4.0 * EPS * t:
             break
@@ -144,15 +159,15 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     Returns ``(status, t, v, scale, omc, tms, omsd, c, S, Sd, x)``: x'(t), the
     rounding scale of x, the oscillator parts at t and x(t) itself (at FOUND the
     residual of the rounded root: the exact root is t - x/v).  Status FOUND: the
-    polished root (the parts are carried to it by a first-order update, exact to
-    O(dt^2) with dt at the rounding level); HORIZON: no contact before t_limit;
+    polished root (one Newton step from the last certified point, everything
+    re-evaluated there); HORIZON: no contact before t_limit;
     NEVER: contact proved impossible (bounded mode g = 0, u + a = 0: the
     oscillator's amplitude envelope dropped below the level xi must return to);
     FAILED: MAX_STEPS exhausted.
     """
     mu = params[P_MU]
     xi0 = eta - g
-    z1, z2, z3, z4 = oscillator_derivatives(u, a, eta, g, mu)
+    z1, z2, z3, z4 = xi_derivatives(xi0, a, mu)
     B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
     M3 = derivative_bound(z2, z3, z4) * B_MARGIN
     bounded = g == 0.0 and u + a == 0.0
@@ -163,6 +178,8 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         omc, tms, omsd, c, S, Sd = 0.0, 0.0, 0.0, 1.0, 0.0, 1.0
     else:
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        xi_t, xid_t = oscillator_at(xi0, a, omc, S, Sd)
+        z1, z2, z3, z4 = xi_derivatives(xi_t, xid_t, mu)  # for x''(t_start) below
     s = 0.0
     for it in range(MAX_STEPS):
         if bounded and _envelope_below(level, x, v):
@@ -170,8 +187,9 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         # window of the local bound: twice the last step or the Newton distance
         h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
         s = safe_step(x, v, B)
-        # local bound on [t, t + h]: x'' >= A - M3 h with A = x''(t); tighter where |x''| << B
-        A = -g + xi0 * Sd - a * (-2.0 * mu * Sd - S)
+        # local bound on [t, t + h]: x'' >= A - M3 h with A = x''(t) = -g - xi''(t); tighter
+        # where |x''| << B
+        A = -g - z2
         h = max(h, 2.0 * s)
         s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
         if t + s > t_limit:
@@ -191,14 +209,12 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
             xm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m = gap(tm, x0, u, a, eta, g, params, coefs)
             if xm <= 4.0 * EPS * sm:
                 return FOUND, tm, vm, sm, omc_m, tms_m, omsd_m, c_m, S_m, Sd_m, xm
+        xi_t, xid_t = oscillator_at(xi0, a, omc, S, Sd)
+        z1, z2, z3, z4 = xi_derivatives(xi_t, xid_t, mu)
         if it < REFRESH_AFTER:
             continue
         # a long march: the energy bounds hold from any time on, so refresh them at t (a stiff
         # oscillator's fast mode dominates the bounds of t = 0 but is gone soon after)
-        z1 = -xi0 * S + a * Sd
-        z2 = -(xi0 * c + a * S) - 2.0 * mu * z1
-        z3 = -z1 - 2.0 * mu * z2
-        z4 = -z2 - 2.0 * mu * z3
         B = min(B, (g + derivative_bound(z1, z2, z3)) * B_MARGIN)
         M3 = min(M3, derivative_bound(z2, z3, z4) * B_MARGIN)
     else:
@@ -220,10 +236,10 @@ def liftoff_time(u, a, eta, g, params):
     the positive root of the bracket, or 0 if neither F > 0 nor (F = 0, F' > 0).
     """
     mu = params[P_MU]
-    z1, z2, z3, z4 = oscillator_derivatives(u, a, eta, g, mu)
+    _, z2, z3, z4 = xi_derivatives(eta - g, a, mu)
     F = -g - z2
     Fp = -z3
-    z5 = -z3 - 2.0 * mu * z4
+    z5 = xi_derivatives(z2, z3, mu)[2]  # xi'' solves the same equation: (xi''', xi'''', xi^(5), ...)
     M4 = derivative_bound(z3, z4, z5) * B_MARGIN
     F = max(F, 0.0)  # a rest state on the sticky boundary: F = 0 up to rounding
     if F == 0.0 and Fp <= 0.0:

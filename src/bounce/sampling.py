@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from .events import STICKY_START
-from .flight import gap
+from .flight import flight_spring, gap, oscillator_at
 from .oscillator import fundamental, make_oscillator
 
 SQRT2 = math.sqrt(2.0)
@@ -42,16 +42,14 @@ def _sample(times, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0, gamma, t_va
             s = dt / SQRT2
             omc, tms, omsd, c, S, Sd = fundamental(s, sparams, scoefs)
             es0 = SQRT2 * a
-            eta_t = eta - eta * omc + es0 * S
-            es_t = -eta * S + es0 * Sd
+            eta_t, es_t = oscillator_at(eta, es0, omc, S, Sd)
             out_x[j] = 0.0
             out_xdot[j] = 0.0
             out_ydev[j] = 2.0 * eta_t
             out_ydot[j] = SQRT2 * es_t
         else:
             xt, vt, _, omc, tms, omsd, c, S, Sd = gap(dt, x, u, a, eta, gamma, params, coefs)
-            eta_t = eta * c + a * S + gamma * omc  # xi(t) + gamma
-            xid_t = (gamma - eta) * S + a * Sd  # xi'(t)
+            eta_t, xid_t = flight_spring(eta, a, gamma, omc, c, S, Sd)  # xi(t) + gamma, xi'(t)
             out_x[j] = max(xt, 0.0)  # clip rounding below the floor
             out_xdot[j] = vt
             out_ydev[j] = xt + 2.0 * eta_t

@@ -31,7 +31,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .flight import B_MARGIN, EPS, FOUND, derivative_bound, safe_step
+from .flight import B_MARGIN, EPS, FOUND, derivative_bound, safe_step, xi_derivatives
 
 #: highest degree tried before handing over to the closed form.
 MAX_DEGREE = 14
@@ -66,9 +66,7 @@ def short_flight(u, a, eta, g, mu, rho, d):
     march of :func:`bounce.flight.first_contact` runs on the polynomial.
     """
     xi0 = eta - g
-    z1 = a
-    z2 = -xi0 - 2.0 * mu * z1
-    z3 = -z1 - 2.0 * mu * z2
+    z1, z2, z3, _ = xi_derivatives(xi0, a, mu)
     # window from a cheap over-estimate of the first safe step (B >= g + |z2|):
     # the degree choice then does not wait for the square root in B
     T = 2.5 * u / (g + abs(z2))
