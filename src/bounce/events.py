@@ -78,7 +78,7 @@ def floor_force(a, eta, gamma, mu):
 
 
 @njit(cache=True)
-def _kahan_add(hi, lo, dt):
+def compensated_add(hi, lo, dt):
     """Neumaier compensated addition (hi, lo) + dt."""
     s = hi + dt
     if abs(hi) >= abs(dt):
@@ -255,7 +255,7 @@ def run_events(
                 else:
                     kind = GRAZING
                     t_start = liftoff_time(u, a, eta, gamma, params)
-        t_hi, t_lo = _kahan_add(t_hi, t_lo, tau)
+        t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         _record(n, t_hi + t_lo, tau, kind, u, a, eta, gamma,
                 out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
         n += 1

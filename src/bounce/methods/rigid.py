@@ -88,7 +88,7 @@ import time
 import numpy as np
 from numba import njit
 
-from ..events import IMPACT
+from ..events import IMPACT, compensated_add
 from ..model import InputError
 from ..sampling import sample_trajectory
 from ..simulate import simulate
@@ -177,13 +177,8 @@ def _rigid_kernel(law, p1, p2, p3, p4, gamma, t1, u0, max_events, t_max, out_t, 
             return n, K_COLLAPSE, t, t, n_res
         if t + tau > t_max:
             return n, K_TIME, t_max, t_max, n_res
-        # Neumaier compensated sum: t stays correctly rounded over 1e6 flights
-        s = t_hi + tau
-        if abs(t_hi) >= abs(tau):
-            t_lo += (t_hi - s) + tau
-        else:
-            t_lo += (tau - s) + t_hi
-        t_hi = s
+        # compensated sum: t stays correctly rounded over 1e6 flights
+        t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         v = u
         since = tau
     return n, K_EVENTS, t_hi + t_lo, t_hi + t_lo, n_res
@@ -332,12 +327,7 @@ def _asymptotic_kernel(x0, t0, gamma, mu, cubic, n_steps, t_max, out_t, out_x, o
             x = (1.0 - alpha * x) * x
         if t_hi + t_lo + tau > t_max:
             return k
-        s = t_hi + tau
-        if abs(t_hi) >= abs(tau):
-            t_lo += (t_hi - s) + tau
-        else:
-            t_lo += (tau - s) + t_hi
-        t_hi = s
+        t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         out_t[k] = t_hi + t_lo
         out_x[k] = x
         out_tau[k] = tau
