@@ -377,8 +377,8 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         msg0 += "; failures: " + "; ".join(
             f"gamma = {g!r}, mu = {m!r}, Deviations(x, xdot, xidot, eta) = ({d0.x.hex()}, {d0.xdot.hex()}, "
             f"{d0.xidot.hex()}, {d0.eta.hex()}): got {got}" for g, m, d0, got, _ in bad0)
-        msg0 += ("; cause: _sticky_phase detaches at once when F = 0 and F' = 0 "
-                 "(it tests F' >= 0, not F' > 0 or F' = 0 with F'' > 0), then every lift-off time is 0")
+        msg0 += ("; a regression of this kind once came from events._sticky_phase detaching at once "
+                 "when F = F' = 0 (see tests/test_checks_part2.py)")
     verdicts.append(Verdict(
         claim="A contact state with F = F' = 0 (alpha_s = 0) keeps contact: F'' = -gamma < 0",
         paper_ref="sec. 3 (strict inequality in eq. cond_di_distacco)",
