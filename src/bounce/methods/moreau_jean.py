@@ -42,6 +42,7 @@ cpu_budget.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -167,13 +168,8 @@ def _setting(setting):
     return cfg
 
 
-_warm_done = False
-
-
+@functools.cache
 def _warm():
-    global _warm_done
-    if _warm_done:
-        return
     fs = np.zeros(7)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
@@ -181,7 +177,6 @@ def _warm():
     buf = np.zeros(2)
     _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, np.eye(2), 10, 1.0, 2, 0.1, 10.0, 1e-3,
              buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1))
-    _warm_done = True
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:

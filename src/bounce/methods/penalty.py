@@ -50,6 +50,7 @@ the exit crossing).  Failures:
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -199,14 +200,9 @@ def _setting(setting):
     return cfg
 
 
-_warm_done = False
-
-
+@functools.cache
 def _warm():
     """Compile (or load from cache) the kernel outside any timed region."""
-    global _warm_done
-    if _warm_done:
-        return
     fs = np.zeros(9)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
@@ -214,7 +210,6 @@ def _warm():
     buf = np.zeros(2)
     _advance(fs, ist, 0.01, 0.01, 1e4, 0.0, 1e-3, 10, 1.0, 2, 0.1, 10.0, 1e-3, buf, buf.copy(), buf.copy(),
              buf.copy(), np.zeros(1), np.zeros(1))
-    _warm_done = True
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
