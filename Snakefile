@@ -36,6 +36,10 @@ except ConfigError as _err:
 config.clear()
 config.update(_checked)
 
+# Where results/, logs and .snakemake/ go: "." for the full pipeline, its own folder for the CI-sized
+# config, so that a CI-sized run never overwrites the full results.
+workdir: config["workdir"]
+
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
