@@ -180,9 +180,13 @@ def _initial_state(args) -> State:
     if missing:
         raise UsageError(f"incomplete initial state: missing {opts(missing)} (give all of {opts(form)})")
     if form is XY_FORM:
-        return State(args.x0, args.xdot0, args.y0, args.ydot0)
+        state = State(args.x0, args.xdot0, args.y0, args.ydot0)
+        check_physical(state)
+        return state
     try:
-        return State.from_psi_xi(args.psi0, args.psidot0, args.xi0, args.xidot0)
+        state = State.from_psi_xi(args.psi0, args.psidot0, args.xi0, args.xidot0)
+        check_physical(state)
+        return state
     except InputError as exc:
         raise InputError(
             f"{exc} (from --psi0 --psidot0 --xi0 --xidot0: x0 = psi0 - xi0, xdot0 = psidot0 - xidot0)"
@@ -228,7 +232,6 @@ def _summary(traj, path, n_samples) -> str:
 def _simulate_command(args) -> int:
     params = Parameters(args.gamma, args.mu)
     initial = _initial_state(args)
-    check_physical(initial)
     check_supported(params, initial.deviations(params))
     try:
         out = check_output_path(args.out)

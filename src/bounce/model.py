@@ -25,10 +25,10 @@ class InputError(ValueError):
 def _finite(name: str, value: float) -> float:
     try:
         value = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a finite number, got {value!r}") from None
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"{name} must be a finite number (allowed range: (-inf, inf)), got {value!r}") from None
     if not math.isfinite(value):
-        raise InputError(f"{name} must be a finite number, got {value!r}")
+        raise InputError(f"{name} must be a finite number (allowed range: (-inf, inf)), got {value!r}")
     return value
 
 
@@ -208,15 +208,17 @@ def check_supported(params: Parameters, start: "Deviations") -> None:
         )
     if not mu <= MU_MAX:
         raise InputError(
-            f"mu must be <= {MU_MAX:g} (supported range: [0, {MU_MAX:g}]: the over-damped spring's two rates "
-            f"~1/(2 mu) and ~2 mu must stay within float64's relative precision of each other), got {mu!r}"
+            f"mu must be <= {MU_MAX:g} (supported range: [0, {MU_MAX:g}]: the range in which the spring's "
+            f"closed forms, whose two rates 1/(2 mu) and 2 mu are then 4e16 apart, are verified against the "
+            f"high-precision reference), got {mu!r}"
         )
-    excess = 0.5 * (start.xidot**2 + (start.xdot + start.xidot) ** 2 + start.eta**2) + gamma * start.x
+    psidot = start.xdot + start.xidot
+    excess = 0.5 * (start.xidot * start.xidot + psidot * psidot + start.eta * start.eta) + gamma * start.x  # inf, no raise
     longest = flight_bound(gamma, excess) if math.isfinite(excess) else math.inf
     if not longest <= FLIGHT_MAX:
         raise InputError(
-            f"initial state: its energy E - E_m = {excess:.3g} allows flights up to "
-            f"2.4 sqrt(E - E_m)/gamma = {longest:.3g} long (supported range: <= {FLIGHT_MAX:g}, i.e. "
-            f"E - E_m <= {(FLIGHT_MAX * gamma) ** 2 / 12:.3g} at gamma = {gamma!r}): the root finder resolves "
-            f"every spring oscillation of a flight"
+            f"initial state (x0 xdot0 y0 ydot0, or psi0 psidot0 xi0 xidot0): its energy E - E_m = {excess:.3g} allows flights up to "
+            f"{longest:.3g} time units long at gamma = {gamma!r} (supported range: flights <= {FLIGHT_MAX:g}, "
+            f"about E - E_m <= (gamma {FLIGHT_MAX:g})^2/12 = {(FLIGHT_MAX * gamma) ** 2 / 12:.3g}): the root "
+            f"finder resolves every spring oscillation of a flight"
         )

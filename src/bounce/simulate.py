@@ -108,7 +108,7 @@ def simulate(
         raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
     energy_stop = float(energy_stop)
     if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
-        raise InputError(f"energy_stop must be a finite number >= 0, got {energy_stop!r}")
+        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
     params_arr, coefs = make_oscillator(params.mu)
     sparams, scoefs = make_oscillator(params.mu / SQRT2)
     start = initial.deviations(params)
