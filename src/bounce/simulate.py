@@ -109,10 +109,10 @@ def simulate(
     energy_stop = float(energy_stop)
     if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
         raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
-    params_arr, coefs = make_oscillator(params.mu)
-    sparams, scoefs = make_oscillator(params.mu / SQRT2)
     start = initial.deviations(params)
     check_supported(params, start)
+    params_arr, coefs = make_oscillator(params.mu)
+    sparams, scoefs = make_oscillator(params.mu / SQRT2)
     out = [np.empty(max_events) for _ in range(6)]
     kind = np.empty(max_events, dtype=np.int8)
     n, stop, t_end = run_events(
