@@ -437,3 +437,17 @@ def condition_numbers(gamma, mu, x0, u, a, eta):
         for j in range(4):
             kappa[j] += abs((op[j] - om[j]) / (2 * h * base[j]))
     return [float(k) for k in kappa]
+
+
+@_hp
+def fundamental_parts(mu, t):
+    """(1 - c, t - S, 1 - S', c, S, S') of xi'' + 2 mu xi' + xi = 0 at t, as floats.
+
+    c, S are the solutions with (c, c') = (1, 0) and (S, S') = (0, 1) at t = 0; the small
+    parts are formed at DPS digits, enough for the cancellation ~mu^2 of 1 - c at mu <= 1e10.
+    """
+    osc = Oscillator(M(mu), 1)
+    t = M(t)
+    c = osc.value(1, 0, t)[0]
+    S, Sd = osc.value(0, 1, t)
+    return tuple(float(v) for v in (1 - c, t - S, 1 - Sd, c, S, Sd))

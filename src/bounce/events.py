@@ -24,7 +24,12 @@ speed |x'| is below what that window can resolve, 4 max(|x''| delta2, |x'''|
 delta3^2 / 2) with delta2 = sqrt(2 xn/|x''|), delta3 = (6 xn/|x'''|)^(1/3), is
 treated as tangential (approximation at the rounding level; generic impacts are
 many orders of magnitude faster).  It is a sticky onset if also
-x'' <= 4 |x'''| delta3, and a grazing otherwise.
+x'' <= 4 |x'''| delta3, or if x'' < 0 beyond that window (at x = x' = 0, x'' is the
+floor force F: the floor holds a mass pressed onto it), and a grazing otherwise.
+The rounding level has an absolute floor of 1e-300: heights below it, where
+products such as x'' x underflow, are the floor itself.  A state dropped from
+x ~ 1e-300 therefore comes to rest (sticky_start) instead of chattering through
+1e6 impacts of speed 1e-151 in 1e-143 time units.
 
 Time is accumulated with Neumaier's compensated sum so that t stays correctly
 rounded after 1e6+ short flights; the flight durations are stored exactly.
@@ -136,17 +141,21 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
 def _at_rest_is_sticky(a, eta, gamma, mu):
     """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?
 
-    F is taken as zero within 8 eps of its terms plus 1: a state given through
-    y ~ 1 is only known to that rounding (approximation at the rounding level).
+    F = eta + 2 mu xi' - 2 gamma is taken as zero within 8 eps of its terms, F' within
+    8 eps of its own: the rounding of forming them (approximation at the rounding level).
+    The threshold is relative to the terms' scale, never absolute: a floor force of
+    1e-9 gamma decides the motion at every gamma.  A state given as heights converts
+    to eta with one rounding relative to eta (y - x - 1 is exact for y - x in [1/2, 2]),
+    so this is also the input's own uncertainty.
     """
     F, Fp = floor_force(a, eta, gamma, mu)
-    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma + 1.0)
+    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
     if F > noise:
         return False
     if F < -noise:
         return True
     # F = 0: stays if F' < 0, or F' = 0 too (then F'' = -gamma < 0, paper after eq. cond_di_distacco)
-    return Fp <= 8.0 * EPS * (abs(a) * (1.0 + 2.0 * mu * mu) + mu * (abs(eta) + 1.0))
+    return Fp <= 8.0 * EPS * (abs(a) * (1.0 + 2.0 * mu * mu) + mu * abs(eta))
 
 
 @njit(cache=True)
@@ -166,8 +175,10 @@ def _is_tangential(v, acc, jerk, xn):
 
 @njit(cache=True)
 def _is_sticky_onset(acc, jerk, xn):
-    """Tangential contact with x'' = 0 within the window delta3 and x''' < 0."""
-    return jerk < 0.0 and acc * acc * acc <= 384.0 * jerk * jerk * xn
+    """Tangential contact with x'' = 0 within the window delta3 and x''' < 0, or with
+    x'' = F < 0 beyond that window (pressed onto the floor)."""
+    window = 384.0 * jerk * jerk * xn
+    return (jerk < 0.0 and acc * acc * acc <= window) or acc * acc * acc < -window
 
 
 @njit(cache=True)
