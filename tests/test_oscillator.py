@@ -33,8 +33,16 @@ SETTINGS = settings(deadline=None, max_examples=60)
 
 #: mu: zero and critical damping drawn often, under- and over-damped, stiff over-damped up to 100
 mus = st.one_of(st.sampled_from([0.0, 1.0]), st.floats(0.0, 3.0), st.floats(3.0, 100.0))
-#: q = rho t, log-uniform over both branches
-qs = st.floats(-12.0, math.log10(60.0)).map(lambda e: 10.0**e)
+#: q = rho t: log-uniform on the Taylor branch (q <= 2) half of the time, uniform beyond it otherwise
+qs = st.one_of(st.floats(-12.0, math.log10(SERIES_Q)).map(lambda e: 10.0**e), st.floats(SERIES_Q, 60.0))
+
+
+def branch_examples(test):
+    """Each damping branch on each side of the switch, whatever hypothesis draws."""
+    for mu in (0.0, 0.3, 1.0, 2.5):
+        for q in (0.7, 5.0):
+            test = example(mu, q)(test)
+    return test
 
 
 def exact_parts(mu, t, dps=80):
@@ -57,6 +65,7 @@ def closed_form_abs_tol(q):
 
 @SETTINGS
 @given(mus, qs)
+@branch_examples
 def test_fundamental_matches_mpmath(mu, q):
     """Taylor branch: the small parts to 4 ulps of themselves (their sums have no cancellation);
     closed-form branch: all six values to closed_form_abs_tol.  c, S, S' on the Taylor branch are
@@ -137,7 +146,8 @@ def test_continuous_in_mu_across_critical_damping(t):
 
 
 @SETTINGS
-@given(mus, st.floats(-4.0, math.log10(30.0)).map(lambda e: 10.0**e))
+@given(mus, qs)
+@branch_examples
 def test_ode_residual(mu, q):
     """The returned functions solve the ODE: five-point differences (h = 1e-3 / rho) give
     (1-c)' = S, (t-S)' = 1-S', S' = d S/dt and S'' = -S - 2 mu S'.  Truncation (rho h)^4 / 30 ~ 3e-14
@@ -162,6 +172,7 @@ def test_ode_residual(mu, q):
 
 @SETTINGS
 @given(mus, qs)
+@branch_examples
 def test_wronskian_and_energy(mu, q):
     """Wronskian c S' - c' S = c S' + S^2 = exp(-2 mu t) (Abel), to the absolute errors of c, S, S'
     (closed_form_abs_tol each, times the factors multiplying them); and the energy S^2 + S'^2
