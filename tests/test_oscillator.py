@@ -241,11 +241,8 @@ def test_taylor_tail_bound(mu):
 
 @pytest.mark.parametrize(
     "mu",
-    [0.0, 0.5, 1.0, 2.0,
-     pytest.param(10.0, marks=pytest.mark.xfail(strict=True, reason=(
-         "oscillator: beyond rho t = 2 the over-damped 1 - c is formed as 1 - c with c = 1 - O(1/mu^2), "
-         "losing a factor ~3 mu^2 (170 ulps at mu = 10, q = 2.2), not the module docstring's "
-         "'at most a factor ~ e^q / q^2 < 4'")))])
+    # mu = 10 lost a factor ~3 mu^2 (170 ulps) before 1 - c was formed with expm1 (issue 12)
+    [0.0, 0.5, 1.0, 2.0, 10.0])
 def test_small_parts_beyond_the_switch_lose_at_most_a_factor_4(mu):
     """Module docstring: for q > SERIES_Q the small parts are formed by subtraction, 'which then
     loses at most a factor ~ e^q / q^2 < 4' of relative accuracy: 16 ulps of themselves (4 times
