@@ -39,7 +39,13 @@ def ci_results(tmp_path_factory):
     """Run the CI-sized pipeline once; the notebooks' test reuses it."""
     work = tmp_path_factory.mktemp("pipeline")
     _snakemake(work, "--configfile", str(ROOT / "config" / "ci.yaml"), "--cores", "2")
-    return work / "results"
+    assert not (work / "results").exists(), "the CI-sized config must write to its own folder (workdir: ci-run)"
+    return work / "ci-run" / "results"
+
+
+def _launch_dir(ci_results: Path) -> Path:
+    """Where snakemake was started for the CI run (the config's workdir ci-run/ is below it)."""
+    return ci_results.parents[1]
 
 
 def test_every_figure_and_dataset_is_produced(ci_results):
@@ -78,7 +84,7 @@ def test_validation_report(ci_results):
         assert f"(`{name}`)" in md, f"check {name} missing from the report"
     assert re.search(r"\*\*\d+ reproduced, \d+ not reproduced, \d+ not checkable\*\*", md)
     html = ci_results.parent / "report.html"
-    _snakemake(ci_results.parent, "--configfile", str(ROOT / "config" / "ci.yaml"), "--report", str(html))
+    _snakemake(_launch_dir(ci_results), "--configfile", str(ROOT / "config" / "ci.yaml"), "--report", str(html))
     assert html.stat().st_size > 100_000
 
 
@@ -106,7 +112,7 @@ def test_ci_validation_verdicts(ci_results):
 
 
 def test_rerun_does_nothing(ci_results):
-    proc = _snakemake(ci_results.parent, "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
+    proc = _snakemake(_launch_dir(ci_results), "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
     assert "Nothing to be done" in proc.stdout + proc.stderr
 
 

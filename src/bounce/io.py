@@ -38,6 +38,7 @@ from .events import KIND_NAMES
 from .model import Deviations, Parameters, State
 from .sampling import sample_trajectory
 from .simulate import Trajectory
+from .springs import spring_from_attrs
 
 __all__ = [
     "DatasetError",
@@ -215,6 +216,7 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         "git_dirty": dirty,
         "gamma": params.gamma,
         "mu": params.mu,
+        **params.spring.attrs(),
         "y_eq": params.y_eq,
         "energy_min": params.energy_min,
         "initial_form": "state" if isinstance(initial, State) else "deviations",
@@ -265,7 +267,7 @@ def _trajectory(ds: xr.Dataset, n: int | None = None, check_t_valid: bool = True
     if missing:
         raise DatasetError(f"not a bounce trajectory dataset: missing {', '.join(missing)}")
     a = ds.attrs
-    params = Parameters(float(a["gamma"]), float(a["mu"]))
+    params = Parameters(float(a["gamma"]), float(a["mu"]), spring_from_attrs(a))
     dev = Deviations(float(a["x0"]), float(a["xdot0"]), float(a["xidot0"]), float(a["eta0"]))
     form = str(a.get("initial_form", "deviations"))
     if form == "state":

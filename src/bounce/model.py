@@ -6,20 +6,21 @@ sqrt(m / 2k).  gamma = g m / (2 L k) and mu = nu / sqrt(2 k m) (eq.
 velocities of the lower and upper mass.  The numerical core works in the
 deviation variables of :mod:`bounce.flight`:
 
-    u = xdot,  a = xi' = (ydot - xdot)/2,  eta = xi + gamma = (y - y_eq - x)/2,
+    u = xdot,  a = xi' = (ydot - xdot)/2,  eta = xi - xi_eq = (y - y_eq - x)/2,
 
 with psi = (y + x - 1)/2, xi = (y - x - 1)/2 (eq. ``xi-psi``) and the static
-equilibrium y_eq = 1 - 2 gamma, E_m = -gamma^2/2 (eqs. ``equilibrium``, ``Emin``).
+equilibrium y_eq = 1 + 2 xi_eq: for the linear spring xi_eq = -gamma, so eta = xi + gamma,
+y_eq = 1 - 2 gamma and E_m = -gamma^2/2 (eqs. ``equilibrium``, ``Emin``); other spring laws
+(:mod:`bounce.springs`, eq. ``nonlin-equilibrium-xi``) have their own xi_eq and E_m.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-
-class InputError(ValueError):
-    """A parameter outside its allowed range; the message names both."""
+from .errors import InputError
+from .springs import LINEAR, SpringLaw
 
 
 def _finite(name: str, value: float) -> float:
@@ -34,10 +35,16 @@ def _finite(name: str, value: float) -> float:
 
 @dataclass(frozen=True)
 class Parameters:
-    """gamma > 0 (gravity against spring stiffness) and mu >= 0 (damping)."""
+    """gamma > 0 (gravity against spring stiffness), mu >= 0 (damping) and the spring law.
+
+    The law (:mod:`bounce.springs`) defaults to the paper's linear spring; the static
+    equilibrium and E_m follow from it (eqs. ``equilibrium``, ``Emin``,
+    ``nonlin-equilibrium-xi``).
+    """
 
     gamma: float
     mu: float
+    spring: SpringLaw = field(default=LINEAR)
 
     def __post_init__(self) -> None:
         gamma = _finite("gamma", self.gamma)
@@ -46,18 +53,25 @@ class Parameters:
             raise InputError(f"gamma must be > 0 (allowed range: (0, inf)), got {gamma!r}")
         if not mu >= 0.0:
             raise InputError(f"mu must be >= 0 (allowed range: [0, inf)), got {mu!r}")
+        if not isinstance(self.spring, SpringLaw):
+            raise InputError(f"spring must be a spring law of bounce.springs, got {self.spring!r}")
         object.__setattr__(self, "gamma", gamma)
         object.__setattr__(self, "mu", mu)
 
     @property
+    def xi_eq(self) -> float:
+        """Static spring deformation at rest on the floor: -gamma for the linear law."""
+        return self.spring.xi_eq(self.gamma)
+
+    @property
     def y_eq(self) -> float:
-        """Equilibrium height of the upper mass, 1 - 2 gamma."""
-        return 1.0 - 2.0 * self.gamma
+        """Equilibrium height of the upper mass, 1 + 2 xi_eq (1 - 2 gamma for the linear law)."""
+        return 1.0 + 2.0 * self.xi_eq
 
     @property
     def energy_min(self) -> float:
-        """E_m = -gamma^2 / 2, the energy of the static equilibrium."""
-        return -0.5 * self.gamma**2
+        """E_m, the energy of the static equilibrium (-gamma^2/2 for the linear law)."""
+        return self.spring.energy_min(self.gamma)
 
 
 @dataclass(frozen=True)
@@ -93,6 +107,8 @@ class State:
         xi' = (Ydot0 - eps)/2: for eps = 0 the floor force F = eta + 2 mu xi' - 2 gamma is then
         zero to rounding of O(gamma), not of O(1) as it would be through Y0 ~ 1.
         """
+        if params.spring.name != "linear":
+            raise InputError(f"initial sticky (eq. sticky-ic) is defined for the linear spring only, got {params.spring.name!r}")
         State(0.0, eps, 1.0, ydot0)  # the usual checks and messages
         return Deviations(
             x=0.0, xdot=eps, xidot=0.5 * (float(ydot0) - float(eps)),
@@ -103,21 +119,21 @@ class State:
         """The same state in the deviation variables of the numerical core."""
         return Deviations(
             x=self.x, xdot=self.xdot, xidot=0.5 * (self.ydot - self.xdot),
-            eta=0.5 * ((self.y - self.x) - 1.0) + params.gamma,  # xi + gamma, one rounding
+            eta=0.5 * ((self.y - self.x) - 1.0) - params.xi_eq,  # xi - xi_eq, one rounding
         )
 
     def energy(self, params: Parameters) -> float:
-        """Total mechanical energy, eq. ``tot-mech-energy``."""
+        """Total mechanical energy, eq. ``tot-mech-energy`` (eq. ``nonlin-energy`` for other laws)."""
         psi = 0.5 * (self.y + self.x - 1.0)
         xi = 0.5 * (self.y - self.x - 1.0)
         psidot = 0.5 * (self.ydot + self.xdot)
         xidot = 0.5 * (self.ydot - self.xdot)
-        return 0.5 * (xidot**2 + xi**2 + psidot**2) + params.gamma * psi
+        return 0.5 * (xidot**2 + psidot**2) + params.spring.potential(xi) + params.gamma * psi
 
 
 @dataclass(frozen=True)
 class Deviations:
-    """A state as the core carries it: x, xdot, xi' and eta = xi + gamma.
+    """A state as the core carries it: x, xdot, xi' and eta = xi - xi_eq (xi + gamma, linear spring).
 
     Use it to start a simulation from a state deep in the asymptotic regime
     without the rounding of y ~ 1 (y - y_eq = x + 2 eta may be ~1e-12).

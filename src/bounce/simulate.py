@@ -20,6 +20,9 @@ from .oscillator import make_oscillator
 
 SQRT2 = math.sqrt(2.0)
 
+#: spring laws (bounce.springs) the closed-form flights of bounce.flight solve
+EXACT_LAWS = ("linear",)
+
 
 @dataclass(frozen=True)
 class Trajectory:
@@ -94,6 +97,10 @@ def simulate(
     Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
     that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`).
     """
+    if params.spring.name not in EXACT_LAWS:
+        raise InputError(
+            f"the closed-form exact solver supports the spring laws {EXACT_LAWS}, got {params.spring.name!r}"
+        )
     max_events = _positive_int("events", max_events)
     t_max = float(t_max)
     if math.isnan(t_max) or not t_max > 0.0:
