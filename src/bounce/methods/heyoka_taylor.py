@@ -35,7 +35,8 @@ Failure detection (from the integrator's own output):
 ``budget``         process time over ``cpu_budget`` seconds (checked between flights).
 
 ``extra`` carries the post-impact ``xidot`` and ``eta`` (for one-step errors against the
-references), ``steps`` per flight, the cooldown heyoka used, and ``reason`` (one line) on failure.
+references), ``steps`` per flight, the cooldown heyoka used, ``start`` (the state it integrated
+from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` (one line) on failure.
 heyoka is imported on first use, so listing the methods does not load it.
 """
 
@@ -143,7 +144,7 @@ def _start(ta, x, u, a, eta):
     gives back the initial state, as after every impact."""
     if x == 0.0 and u > 0.0:
         ta.state[:] = [0.0, -u, a + u, eta]
-        outcome = ta.propagate_until(0.0 + 1e-300)[0]
+        outcome = ta.propagate_until(1e-300)[0]
         if int(outcome) == EVENT_STOP and ta.time == 0.0:
             ta.state[:] = [0.0, u, a, eta]
             return
@@ -232,7 +233,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
         method="heyoka", setting=dict(setting or {}), t=np.array(t_imp), xdot=np.array(v_imp), cpu_time=cpu,
         failure=failure, failure_index=failure_index, t_end=t_prev, y=y_out,
         extra={"xidot": np.array(a_imp), "eta": np.array(e_imp), "steps": np.array(steps), "reason": reason,
-               "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta)},
+               "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta),
+               "start": {"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": eta0, "xi_eq": xi_eq}},
     )
 
 
