@@ -367,6 +367,7 @@ class PowerFlight:
     def __init__(self, law: Law, x, xdot, xidot, xi):
         self.law = law
         self.x0 = x
+        self.psid0 = xdot + xidot
         self.starts = []
         self.segments = []
         self.t_end = mpf(0)
@@ -475,7 +476,7 @@ class PowerFlight:
 
 def _error_bar(flight, t, x2):
     """Evaluation error of x(t): 2^-prec+8 of the magnitudes it is formed from."""
-    return mpf(2) ** (-(mp.prec - 8)) * (abs(flight.x0) + abs(flight.end_state[1]) * t + x2 * t * t + 1)
+    return mpf(2) ** (-(mp.prec - 8)) * (abs(flight.x0) + abs(flight.psid0) * t + x2 * t * t + 1)
 
 
 def _refine(flight, lo, hi):

@@ -2,10 +2,11 @@
 general-purpose peer (issue 9), for the linear and the power-law spring.
 
 The flight of eq. ``eq-motion-nonlin-psi-xi`` (linear: eq. ``eq-motion-psi-xi``) in the core's
-deviation variables s = (x, u = x', a = xi', eta = xi - xi_eq):
+deviation variables s = (x, u = x', v = xi', eta = xi - xi_eq) (``a`` in the core; here a is the
+exponent):
 
-    x' = u,  u' = -gamma - xi'',  a' = xi'',  eta' = a,
-    xi'' = -rho xi |xi|^a - 2 mu a |xi|^b,   xi = xi_eq + eta,   xi_eq = -(gamma/rho)^(1/(a+1))
+    x' = u,  u' = -gamma - xi'',  v' = xi'',  eta' = v,
+    xi'' = -rho xi |xi|^a - 2 mu v |xi|^b,   xi = xi_eq + eta,   xi_eq = -(gamma/rho)^(1/(a+1))
 
 (eq. ``nonlin-equilibrium-xi``), with |xi|^p written (xi^2)^(p/2) and dropped when p = 0 (the
 linear law is then the linear system, no powers).  Set up as the issue asks for a fair peer:
@@ -14,7 +15,7 @@ linear law is then the linear system, no powers).  Set up as the issue asks for 
   gamma, mu, rho, xi_eq are runtime parameters, the state and time are reset per run;
 * a terminal event on x = 0 with direction negative (no callback: it stops ``propagate_until``);
   at each stop the impact rule (eq. ``collision-rule``: psi' and xi' exchanged) is applied in
-  place: x -> 0, u -> -u, a -> u + a, eta unchanged; the event's cooldown is heyoka's own unless
+  place: x -> 0, u -> -u, v -> u + v, eta unchanged; the event's cooldown is heyoka's own unless
   the ``cooldown`` setting gives one;
 * tolerance 2^-52 (machine precision) unless ``tol`` says otherwise.
 
@@ -89,7 +90,7 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
     times of upward crossings of x = 0 to (cleared by the caller)."""
     import heyoka as hy
 
-    x, u, a_, eta = hy.make_vars("x", "u", "a", "eta")
+    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
     gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
     xi = xi_eq + eta
 
@@ -98,7 +99,7 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
 
     fa, fb = abs_pow(a), abs_pow(b)
     force = rho * xi if fa is None else rho * xi * fa
-    damping = 2.0 * mu * a_ if fb is None else 2.0 * mu * a_ * fb
+    damping = 2.0 * mu * v if fb is None else 2.0 * mu * v * fb
     xi2 = -force - damping
     upward = []
 
@@ -108,7 +109,7 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
     kw = {} if cooldown is None else {"cooldown": float(cooldown)}
     floor = hy.t_event(x, direction=hy.event_direction.negative, **kw)
     rise = hy.nt_event(x, on_upward, direction=hy.event_direction.positive)
-    ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (a_, xi2), (eta, a_)], [0.0] * 4,
+    ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
                             t_events=[floor], nt_events=[rise], pars=[0.0] * 4, tol=tol,
                             high_accuracy=high_accuracy)
     return ta, upward  # heyoka deep-copies callbacks, but a function deep-copies to itself: same list
@@ -127,30 +128,30 @@ def _setting(setting):
     return cfg
 
 
-def flight_bound(x, u, a, xi, gamma, rho, pa) -> float:
+def flight_bound(x, u, v, xi, gamma, rho, pa) -> float:
     """A time after which x < 0 whatever the spring does (module docstring, missed_impact (a))."""
-    es = 0.5 * a * a + rho * abs(xi) ** (pa + 2.0) / (pa + 2.0)
+    es = 0.5 * v * v + rho * abs(xi) ** (pa + 2.0) / (pa + 2.0)
     xm = ((pa + 2.0) * es / rho) ** (1.0 / (pa + 2.0))
-    psi, p = x + xi, u + a
-    c = max(psi + xm, 0.0)
+    psi, p = x + xi, u + v
+    c = max(psi + xm, 0.0) + 8.0 * 2.0**-52 * (abs(psi) + xm)  # psi + X_m >= 0, rounded up
     return 1.01 * (p + math.sqrt(p * p + 2.0 * gamma * c)) / gamma + 1e-9
 
 
-def _start(ta, x, u, a, eta):
+def _start(ta, x, u, v, eta):
     """Put the initial state into ``ta``.  A start on the floor (x = 0, x' > 0) is a restart after an
     impact: heyoka's event detection misses the next root when the event function starts at exactly 0
-    without an active cooldown, so the pre-impact state (x' = -u, xi' = a + u, the rule inverted) is
+    without an active cooldown, so the pre-impact state (x' = -u, xi' = v + u, the rule inverted) is
     propagated instead; heyoka's own event then fires at t = 0, arms its cooldown, and the rule
     gives back the initial state, as after every impact."""
     if x == 0.0 and u > 0.0:
-        ta.state[:] = [0.0, -u, a + u, eta]
+        ta.state[:] = [0.0, -u, v + u, eta]
         outcome = ta.propagate_until(1e-300)[0]
         if int(outcome) == EVENT_STOP and ta.time == 0.0:
-            ta.state[:] = [0.0, u, a, eta]
+            ta.state[:] = [0.0, u, v, eta]
             return
         ta.time = 0.0
         ta.reset_cooldowns()
-    ta.state[:] = [x, u, a, eta]
+    ta.state[:] = [x, u, v, eta]
 
 
 def _active_cooldown(ta):
@@ -177,7 +178,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     upward.clear()
     samples = None if sample_times is None else np.asarray(sample_times, dtype=float)
     y_out = None if samples is None else np.full(samples.shape, np.nan)
-    t_imp, v_imp, a_imp, e_imp, steps = [], [], [], [], []
+    t_imp, u_after, v_after, e_imp, steps = [], [], [], [], []
     failure, failure_index, reason = "", -1, ""
     n_short = 0
     t_prev = 0.0
@@ -187,8 +188,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
         if time.process_time() - start > budget:
             failure, failure_index, reason = "budget", len(t_imp), "CPU budget exhausted"
             break
-        x, u, a, eta = ta.state
-        bound = t_prev + flight_bound(x, u, a, xi_eq + eta, gamma, rho, pa)
+        x, u, v, eta = ta.state
+        bound = t_prev + flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa)
         t_stop = min(bound, t_max)
         dense = samples is not None and bool(np.any((samples >= t_prev) & (samples <= t_stop)))
         outcome, _, _, nsteps, c_out, _ = ta.propagate_until(t_stop, c_output=dense)
@@ -206,13 +207,13 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
             reason = f"x rose through the floor at t = {inside[0]!r} inside a flight: a dip below it was skipped"
             break
         if code == EVENT_STOP:
-            x, u, a, eta = ta.state
-            ta.state[:] = [0.0, -u, u + a, eta]  # impact: psi' <-> xi' (x' < 0 at a downward crossing)
+            x, u, v, eta = ta.state
+            ta.state[:] = [0.0, -u, u + v, eta]  # impact: psi' <-> xi' (x' < 0 at a downward crossing)
             tau = ta.time - t_prev
             t_prev = ta.time
             t_imp.append(t_prev)
-            v_imp.append(-u)
-            a_imp.append(u + a)
+            u_after.append(-u)
+            v_after.append(u + v)
             e_imp.append(eta)
             n_short = n_short + 1 if tau < STALL_DT else 0
             if n_short > STALL_COUNT:
@@ -230,9 +231,9 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
         break
     cpu = time.process_time() - start
     return MethodResult(
-        method="heyoka", setting=dict(setting or {}), t=np.array(t_imp), xdot=np.array(v_imp), cpu_time=cpu,
+        method="heyoka", setting=dict(setting or {}), t=np.array(t_imp), xdot=np.array(u_after), cpu_time=cpu,
         failure=failure, failure_index=failure_index, t_end=t_prev, y=y_out,
-        extra={"xidot": np.array(a_imp), "eta": np.array(e_imp), "steps": np.array(steps), "reason": reason,
+        extra={"xidot": np.array(v_after), "eta": np.array(e_imp), "steps": np.array(steps), "reason": reason,
                "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta),
                "start": {"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": eta0, "xi_eq": xi_eq}},
     )
