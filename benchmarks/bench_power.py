@@ -59,6 +59,7 @@ import power_reference as PR  # noqa: E402
 
 from bounce import Deviations, Parameters, State, simulate  # noqa: E402
 from bounce.methods import heyoka_taylor as HT  # noqa: E402
+from bounce.simulate import EXACT_LAWS  # noqa: E402
 from bounce.springs import SPRING_LAWS  # noqa: E402
 
 GAMMA = MU = 0.01
@@ -92,7 +93,7 @@ def law_setup(name):
 def bounce_run(params, initial, events, law="linear"):
     """bounce's exact solver for the law (the one call that selects the power-law solver), or None
     while the power-law solver (and the law in ``params.spring``) is not available."""
-    if law == "linear":
+    if law == "linear" or params.spring.name in EXACT_LAWS:
         return simulate(params, initial, max_events=events)
     if params.spring.name != "power":
         return None
