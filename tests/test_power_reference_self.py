@@ -11,7 +11,8 @@ What makes it trustworthy, each a test that can fail:
 * Hertz (a = b = 1/2) and two other laws work from moderate post-impact states (flights crossing
   xi = 0) and deep near equilibrium (xi - xi_eq = 1e-13, flights ~1e-6), where an independent
   integrator (mpmath.odefun at 25 digits, xi stays away from 0) gives the same flight;
-* a constructed shallow dip 1e-30 below the floor is found, one 1e-30 above it is not an impact.
+* a constructed shallow dip 1e-30 below the floor is found, one 1e-30 above it is not an impact;
+* the paper's drop (spring at rest length, a rest point of the spring) lands at sqrt(2 psi0/gamma).
 """
 
 from __future__ import annotations
@@ -101,6 +102,17 @@ def test_energy_never_rises_and_dissipates_at_the_derived_rate(hertz_moderate):
         r = hertz_moderate
         after = law.energy(mpf(0), r["xdot"] + r["xidot"], r["xi"], r["xidot"])
         assert rel(after, r["energy_end"]) < 1e-45
+
+
+@pytest.mark.parametrize("law", sorted(LAWS))
+def test_drop_with_spring_at_rest_length_is_a_free_fall(law):
+    """xi = xi' = 0 is a rest point of the spring: the paper's drop lands at sqrt(2 psi0 / gamma)."""
+    r = PR.reference_first_impact(GAMMA, MU, *LAWS[law], 6.0, 0.0, 0.0, 0.0)
+    with mp.workdps(PR.DPS):
+        t1 = mp.sqrt(2 * mpf(6) / mpf(GAMMA))
+        assert rel(r["tau"], t1) < 1e-45
+        assert rel(r["xdot"], mpf(GAMMA) * t1) < 1e-45 and rel(r["xidot"], -mpf(GAMMA) * t1) < 1e-45
+        assert r["xi"] == 0
 
 
 @pytest.mark.parametrize("law", sorted(LAWS))
