@@ -5,7 +5,8 @@ Laws (gamma = mu = 0.01, rho = 1): ``linear`` (a = b = 0) and ``hertz`` (a = b =
 
 * ``drop``: linear: the paper's drop psi(0) = 6, xi = xi' = psi' = 0.  Hertz: the same drop with
   the spring at its static compression xi(0) = xi_eq, because with xi(0) = 0 heyoka cannot start
-  (the Taylor coefficients of |xi|^(1/2) are not finite there: reported as its own row);
+  (the Taylor coefficients of |xi|^(1/2) are not finite there); the paper's drop is its own row
+  (``paper drop, xi(0) = 0``);
 * ``deep``: a post-impact state deep in the asymptotic regime: bounce's state after 1e5 impacts of
   the drop where bounce simulates the law, else x = 0, x' = 1e-8, xi' = 2e-9, eta = 1e-13.
 
@@ -93,10 +94,12 @@ def law_setup(name):
 def bounce_run(params, initial, events, law="linear"):
     """bounce's exact solver for the law (the one call that selects the power-law solver), or None
     while the power-law solver (and the law in ``params.spring``) is not available."""
-    if law == "linear" or params.spring.name in EXACT_LAWS:
+    if law == "linear":
         return simulate(params, initial, max_events=events)
     if params.spring.name != "power":
         return None
+    if "power" in EXACT_LAWS:
+        return simulate(params, initial, max_events=events)
     try:
         from bounce.power_events import simulate_power
     except ImportError:
@@ -111,16 +114,17 @@ def deviations(params, xi_eq, x, u, a, eta):
 
 def scenes(name, params, setting):
     """name -> initial state of the law's scenes (module docstring)."""
-    rho, a, b = LAWS[name]
     xi_eq = HT.spring_law(params, setting)[3]
-    drop = State.from_psi_xi(6.0, 0.0, 0.0 if name == "linear" else xi_eq, 0.0)
-    tr = bounce_run(params, drop, DEEP_INDEX, name)
+    paper_drop = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
+    out = {"drop": paper_drop} if name == "linear" else {
+        "paper drop, xi(0) = 0": paper_drop, "drop": State.from_psi_xi(6.0, 0.0, xi_eq, 0.0)}
+    tr = bounce_run(params, out["drop"], DEEP_INDEX, name)
     if tr is not None:
         k = DEEP_INDEX - 1
-        deep = Deviations(0.0, float(tr.xdot[k]), float(tr.xidot[k]), float(tr.eta[k]))
+        out["deep"] = Deviations(0.0, float(tr.xdot[k]), float(tr.xidot[k]), float(tr.eta[k]))
     else:
-        deep = deviations(params, xi_eq, 0.0, 1e-8, 2e-9, 1e-13)
-    return {"drop": drop, "deep": deep}
+        out["deep"] = deviations(params, xi_eq, 0.0, 1e-8, 2e-9, 1e-13)
+    return out
 
 
 def timed(fn, repeats):
@@ -177,11 +181,8 @@ def run_law(name, args, out):
     xi_eq = HT.spring_law(params, setting)[3]
     alpha = MU / (3 * GAMMA) * (GAMMA / rho) ** (b / (a + 1))
     rows = {}
-    if name != "linear":  # the paper's drop, spring at rest length
-        r = HT.run(params, State.from_psi_xi(6.0, 0.0, 0.0, 0.0), setting, max_events=5)
-        rows["paper drop, xi(0) = 0"] = {"heyoka": {"failure": r.failure, "index": r.failure_index,
-                                                    "reason": r.extra["reason"]}}
-    for scene, init in scenes(name, params, setting).items():
+    all_scenes = scenes(name, params, setting)
+    for scene, init in all_scenes.items():
         row = {}
         HT.run(params, init, setting, max_events=10)  # compile once
         first = HT.run(params, init, setting, max_events=args.heyoka_events)
@@ -202,7 +203,8 @@ def run_law(name, args, out):
 
             row["bounce"] = {"impacts_per_s": timed(bounce_timing, args.repeats), "stop": tr.stop_reason,
                              "all_impacts": bool((tr.kind == 0).all()), "impacts": len(tr.t)}
-            row["ratio"] = row["bounce"]["impacts_per_s"][0] / row["heyoka"]["impacts_per_s"][0]
+            h_rate = row["heyoka"]["impacts_per_s"][0]
+            row["ratio"] = row["bounce"]["impacts_per_s"][0] / h_rate if h_rate > 0 else math.inf
             n = min(len(first.t), len(tr.t))
             off = np.nonzero(np.abs(first.t[:n] - tr.t[:n]) > DIVERGE_REL * np.abs(tr.t[:n]))[0]
             row["heyoka_leaves_bounce_at"] = int(off[0]) if off.size else -1
@@ -226,7 +228,7 @@ def run_law(name, args, out):
         rows[scene] = row
     # heyoka's cooldown: along the deep scene and by depth
     cool = {}
-    deep = scenes(name, params, setting)["deep"]
+    deep = all_scenes["deep"]
     for c in COOLDOWNS:
         setting_c = {**setting, "cooldown": c}
         r = HT.run(params, deep, setting_c, max_events=args.heyoka_events)
