@@ -24,8 +24,8 @@ eq. ``dimensionless-eq-motion``; psi' = xi = xi' = 0 at t = 0):
 * error: relative error of the first impact time t1 against the exact
   sqrt(2 psi0 / gamma) (free fall of the centre of mass with the spring at
   rest), and the largest relative error of t1..t10 against an independent
-  mpmath computation (closed-form flights -- psi'' = -gamma,
-  xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 40 digits).
+  mpmath computation (:mod:`bounce.reference`: closed-form flights -- psi'' = -gamma,
+  xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 50 digits).
 * lost impact (scipy, see scipy_baseline.py): first flight that (i) stepped
   over a dip of x below the floor, (ii) stalled (zero-length flight) or
   (iii) went below x = -1e-9; and separately the first impact whose time
@@ -77,107 +77,14 @@ DIVERGE_REL = 1e-6
 # independent high-precision reference for the first impacts
 # --------------------------------------------------------------------------
 
-class _Flight:
-    """Closed-form free flight in (psi, xi): psi'' = -gamma, xi'' + 2 mu xi' + xi = 0.
+def reference_impacts(gamma, mu, psi0, n=N_REF):
+    """First ``n`` impact times (mpf) from psi(0) = psi0, xi = psi' = xi' = 0, by :mod:`bounce.reference`
+    (50 digits; its root search cannot skip an impact).  In its deviation variables the start is
+    x = psi0, xdot = xi' = 0, eta = xi + gamma = gamma."""
+    from bounce import reference
 
-    (Sum and difference of eq. dimensionless-eq-motion with psi = (y + x - 1)/2,
-    xi = (y - x - 1)/2.)  ``mp`` is the mpmath module or None for float64/numpy.
-    """
-
-    def __init__(self, gamma, mu, psi, p, xi, a, mp=None):
-        self.mp, self.gamma, self.psi, self.p = mp, gamma, psi, p
-        if mu == 1:
-            raise ValueError("critical damping mu = 1 not handled by the reference")
-        if mp is None:
-            sqrt = math.sqrt
-        else:
-            sqrt = mp.sqrt
-        self.under = mu < 1
-        if self.under:  # xi = e^{-mu t} (xi0 cos wt + (a0 + mu xi0)/w sin wt)
-            w = sqrt(1 - mu * mu)
-            self.c = (mu, w, xi, (a + mu * xi) / w, a, (mu * a + xi) / w)
-        else:  # xi = A e^{r1 t} + B e^{r2 t}
-            s = sqrt(mu * mu - 1)
-            r1, r2 = -mu + s, -mu - s
-            A = (a - r2 * xi) / (r1 - r2)
-            self.c = (r1, r2, A, xi - A)
-
-    def _fns(self):
-        if self.mp is None:
-            return np.exp, np.cos, np.sin
-        return self.mp.exp, self.mp.cos, self.mp.sin
-
-    def state(self, t):
-        """(psi, psi', xi, xi') at time t after the start of the flight."""
-        exp, cos, sin = self._fns()
-        psi = self.psi + self.p * t - self.gamma * t * t / 2
-        p = self.p - self.gamma * t
-        if self.under:
-            mu, w, c0, s0, a0, s1 = self.c
-            e, cw, sw = exp(-mu * t), cos(w * t), sin(w * t)
-            xi = e * (c0 * cw + s0 * sw)
-            a = e * (a0 * cw - s1 * sw)
-        else:
-            r1, r2, A, B = self.c
-            e1, e2 = exp(r1 * t), exp(r2 * t)
-            xi = A * e1 + B * e2
-            a = A * r1 * e1 + B * r2 * e2
-        return psi, p, xi, a
-
-    def x(self, t):
-        psi, _, xi, _ = self.state(t)
-        return psi - xi
-
-
-def reference_impacts(gamma, mu, psi0, n=N_REF, dps=40):
-    """First ``n`` impact times from psi(0) = psi0, xi = psi' = xi' = 0, in mpmath.
-
-    Each flight: scan x(t) = psi - xi in float64 with step h (first sign
-    change; smallest sampled x before it reported as the tangency margin), then
-    refine the bracket in mpmath (``findroot``, Illinois) at ``dps`` digits and
-    apply the impact psi' <-> xi'.  Returns (times as mpf, margin), margin =
-    smallest sampled interior local minimum of x before an impact divided by
-    the flight's largest sampled x (inf if x has no such dip; a value near 0
-    would flag a near-tangency the scan could have misjudged).
-    """
-    import mpmath
-
-    mp = mpmath.mp
-    mp.dps = dps
-    g, m = mpmath.mpf(gamma), mpmath.mpf(mu)  # the exact binary values bounce sees
-    psi, p, xi, a = mpmath.mpf(psi0), mpmath.mpf(0), mpmath.mpf(0), mpmath.mpf(0)
-    t_abs, times, margin = mpmath.mpf(0), [], math.inf
-    for k in range(n):
-        fl_mp = _Flight(g, m, psi, p, xi, a, mp=mpmath)
-        fl_np = _Flight(gamma, mu, float(psi), float(p), float(xi), float(a))
-        h, t_lo, found = 1e-3, 0.0, None
-        while found is None:  # scan in chunks of 1e5 steps
-            tt = t_lo + h * np.arange(1, 100001)
-            xs = fl_np.x(tt)
-            neg = np.nonzero(xs < 0)[0]
-            j = int(neg[0]) if neg.size else len(xs)
-            seg = xs[:j]  # sampled x before the first sign change: any near-tangency?
-            if seg.size > 2:
-                mins = np.nonzero((seg[1:-1] < seg[:-2]) & (seg[1:-1] < seg[2:]))[0] + 1
-                if mins.size:
-                    margin = min(margin, float(seg[mins].min() / seg.max()))
-            if neg.size:
-                found = (tt[j - 1] if j else t_lo, tt[j])
-            else:
-                t_lo = float(tt[-1])
-                if t_lo > 1e5:
-                    raise RuntimeError("reference: no impact found")
-        lo, hi = mpmath.mpf(found[0]), mpmath.mpf(found[1])
-        if k > 0 and found[0] == 0.0:
-            lo = mpmath.mpf(found[1]) / 1000  # x(0) = 0 after an impact: stay off the restart
-        if not (fl_mp.x(lo) > 0 and fl_mp.x(hi) < 0):
-            raise RuntimeError(f"reference: bracket lost at flight {k}")
-        tau = mpmath.findroot(fl_mp.x, (lo, hi), solver="illinois", tol=mpmath.mpf(10) ** (-2 * dps + 10))
-        psi, p, xi, a = fl_mp.state(tau)
-        p, a = a, p  # impact: x' -> -x', y' unchanged  <=>  psi' <-> xi'
-        t_abs += tau
-        times.append(t_abs)
-    return times, margin
+    times, _, _ = reference.trajectory(gamma, mu, reference.Dev(psi0, 0.0, 0.0, gamma), n)
+    return times
 
 
 def errors_vs_reference(t, ref, t1_exact):
@@ -293,7 +200,7 @@ def run_scene(name, cfg, args, notes):
     label = f"{name} (g={gamma:g}, mu={mu:g}, psi0={psi0:g})"
 
     # reference
-    ref, margin = reference_impacts(gamma, mu, psi0)
+    ref = reference_impacts(gamma, mu, psi0)
     mpmath.mp.dps = 40
     t1_exact = mpmath.sqrt(2 * mpmath.mpf(psi0) / mpmath.mpf(gamma))
     if abs(ref[0] - t1_exact) / t1_exact > mpmath.mpf(10) ** -30:
@@ -362,7 +269,6 @@ def run_scene(name, cfg, args, notes):
         "naive_restart": {"impacts": naive.n_impacts, "stop_reason": naive.stop_reason,
                           "lost_index": naive.lost_index, "lost_reasons": list(naive.lost_reasons),
                           "elapsed_s": naive.elapsed},
-        "reference_tangency_margin": margin,
         "bounce_stop_reason": tr.stop_reason, "bounce_events": len(tr),
         "bounce_t_end": float(tr.t[-1]),
     }

@@ -218,6 +218,10 @@ def main(argv=None) -> int:
     """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit status."""
     try:
         argv = sys.argv[1:] if argv is None else list(argv)
+        if argv[:1] == ["check"]:  # one claim of bounce.checks, alone
+            from .claims_cli import main as check_main
+
+            return check_main(argv[1:])
         args = build_parser().parse_args(_join_negative_numbers(argv))
         if args.command == "simulate":
             return _simulate_command(args)
