@@ -193,6 +193,7 @@ def _first_over(a, b, thr):
 def run_scene(name, cfg, args, notes):
     import mpmath
     from bounce import Parameters, State
+    from bounce.events import IMPACT
 
     gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]
     params = Parameters(gamma, mu)
@@ -208,7 +209,7 @@ def run_scene(name, cfg, args, notes):
 
     # bounce, N events
     tr, walls, _ = time_bounce(params, state, args.events, args.repeats)
-    imp = tr.kind == 0
+    imp = tr.kind == IMPACT
     n_imp = int(imp.sum())
     t_imp = tr.t[imp]
     rates = [n_imp / w for w in walls]
@@ -239,7 +240,7 @@ def run_scene(name, cfg, args, notes):
 
     # bounce on the same K impacts
     trK, wallsK, innerK = time_bounce(params, state, K, args.repeats)
-    ratesK = [int((trK.kind == 0).sum()) / w for w in wallsK]
+    ratesK = [int((trK.kind == IMPACT).sum()) / w for w in wallsK]
 
     # naive restart (event g = x after impacts too): how soon does it stall?
     naive = simulate_scipy(gamma, mu, state, args.events, args.naive_seconds, check=False,
