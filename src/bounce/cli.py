@@ -297,6 +297,10 @@ def main(argv=None) -> int:
         except ValueError:  # not the main thread: leave signals alone
             with_handler = False
         argv = sys.argv[1:] if argv is None else list(argv)
+        if argv[:1] == ["check"]:  # one claim of bounce.checks, alone
+            from .claims_cli import main as check_main
+
+            return check_main(argv[1:])
         argv = _join_negative_numbers(argv)
         _reject_repeated_options(argv)
         args = build_parser().parse_args(argv)

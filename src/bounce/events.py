@@ -66,6 +66,16 @@ STOP_NAMES = ("max_events", "t_max", "energy", "sticky_forever", "root_finder_fa
 
 SQRT2 = math.sqrt(2.0)
 
+# zero-speed contacts (module docstring): x is known to xn = XN_ULPS eps scale; a contact is tangential
+# if its speed is below WINDOW_FACTOR times what the hidden window resolves, in powers:
+# v^2 <= TANGENT_ACC |x''| xn or |v|^3 <= TANGENT_JERK |x'''| xn^2; it is a sticky onset if also
+# x''^3 <= STICKY_ONSET x'''^2 xn (x'' <= WINDOW_FACTOR |x'''| delta3)
+XN_ULPS = 4.0
+WINDOW_FACTOR = 4.0
+TANGENT_ACC = 2.0 * WINDOW_FACTOR**2  # (4 |x''| delta2)^2 = 32 |x''| xn
+TANGENT_JERK = 4.5 * WINDOW_FACTOR**3  # (4 |x'''| delta3^2/2)^3 = 288 |x'''| xn^2
+STICKY_ONSET = 6.0 * WINDOW_FACTOR**3  # (4 |x'''| delta3)^3 = 384 x'''^2 xn
+
 
 @njit(cache=True)
 def energy_excess(x, u, a, eta, gamma):
@@ -170,15 +180,35 @@ def _is_tangential(v, acc, jerk, xn):
     if v >= 0.0:
         return True
     v2 = v * v
-    return v2 <= 32.0 * abs(acc) * xn or v2 * abs(v) <= 288.0 * abs(jerk) * xn * xn
+    return v2 <= TANGENT_ACC * abs(acc) * xn or v2 * abs(v) <= TANGENT_JERK * abs(jerk) * xn * xn
 
 
 @njit(cache=True)
 def _is_sticky_onset(acc, jerk, xn):
     """Tangential contact with x'' = 0 within the window delta3 and x''' < 0, or with
     x'' = F < 0 beyond that window (pressed onto the floor)."""
-    window = 384.0 * jerk * jerk * xn
+    window = STICKY_ONSET * jerk * jerk * xn
     return (jerk < 0.0 and acc * acc * acc <= window) or acc * acc * acc < -window
+
+
+@njit(cache=True)
+def rounding_level(scale):
+    """xn = XN_ULPS eps scale: how well x is known at a contact (scale: the magnitudes of eq. (F)'s terms)."""
+    return XN_ULPS * EPS * scale + 1e-300
+
+
+def contact_window(scale: float, acc: float, jerk: float) -> tuple[float, float, float, float]:
+    """(xn, v_tol, delta2, delta3) of the contact classifier at a contact with x'' = acc, x''' = jerk.
+
+    Contacts slower than v_tol are tangential (:func:`_is_tangential`); delta2 = sqrt(2 xn/|x''|) and
+    delta3 = (6 xn/|x'''|)^(1/3) are the windows in which rounding hides the contact time (inf for a zero
+    derivative).  For the claims about the classifier; the loop uses the same constants.
+    """
+    xn = rounding_level(scale)
+    v_tol = max(math.sqrt(TANGENT_ACC * abs(acc) * xn), (TANGENT_JERK * abs(jerk) * xn * xn) ** (1.0 / 3.0))
+    d2 = math.sqrt(2.0 * xn / abs(acc)) if acc != 0 else math.inf
+    d3 = (6.0 * xn / abs(jerk)) ** (1.0 / 3.0) if jerk != 0 else math.inf
+    return xn, v_tol, d2, d3
 
 
 @njit(cache=True)
@@ -250,7 +280,7 @@ def run_events(
             _, xidd, xiddd, _ = xi_derivatives(eta_t - gamma, xid_t, mu)
             acc = -gamma - xidd
             jerk = -xiddd
-            xn = 4.0 * EPS * scale + 1e-300
+            xn = rounding_level(scale)
             if not _is_tangential(v, acc, jerk, xn):
                 kind = IMPACT  # eq. collision-rule: psi' <-> xi'
                 a = u + a - gamma * tau
