@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from functools import partial
-
 from . import asymptotics, contacts, sticky, trajectories
 
 
@@ -15,10 +13,10 @@ def _one(fn):
 FIGURES = {
     "rigid-fall": _one(trajectories.rigid_fall),
     "rest-coeff": _one(contacts.rest_coeff),
-    "very_rigid_poincare": _one(partial(contacts.contact_portrait, magnified=False)),
-    "very_rigid_poincare_magni": _one(partial(contacts.contact_portrait, magnified=True)),
-    "very_rigid_poincare_overdamped": _one(partial(contacts.contact_portrait, magnified=False)),
-    "very_rigid_poincare_overdamped_magni": _one(partial(contacts.contact_portrait, magnified=True)),
+    "very_rigid_poincare": _one(contacts.contact_portrait),
+    "very_rigid_poincare_magni": _one(contacts.contact_portrait_magni),
+    "very_rigid_poincare_overdamped": _one(contacts.contact_portrait),
+    "very_rigid_poincare_overdamped_magni": _one(contacts.contact_approach_magni),
     "sticky-traj": trajectories.sticky_traj,
     "sticky-convergence": _one(sticky.sticky_convergence),
     "sticky-inference": _one(sticky.sticky_inference),
