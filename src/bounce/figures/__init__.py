@@ -12,13 +12,13 @@ def _one(fn):
 
 FIGURES = {
     "rigid-fall": _one(trajectories.rigid_fall),
-    "rest-coeff": _one(contacts.rest_coeff),
+    "rest-coeff": contacts.rest_coeff,
     "very_rigid_poincare": _one(contacts.contact_portrait),
     "very_rigid_poincare_magni": _one(contacts.contact_portrait_magni),
     "very_rigid_poincare_overdamped": _one(contacts.contact_portrait),
     "very_rigid_poincare_overdamped_magni": _one(contacts.contact_approach_magni),
     "sticky-traj": trajectories.sticky_traj,
-    "sticky-convergence": _one(sticky.sticky_convergence),
+    "sticky-convergence": sticky.sticky_convergence,
     "sticky-inference": _one(sticky.sticky_inference),
     "energy-decay": asymptotics.energy_decay,
     "asymptotic-laws": asymptotics.asymptotic_laws,

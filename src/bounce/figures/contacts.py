@@ -16,35 +16,72 @@ def _impact_only(ds):
     return ds
 
 
-def rest_coeff(ds, spec, outputs) -> None:
+def _horizon_impacts(horizon, ds) -> int:
+    """float64 predictability horizon H (impacts t_1..t_H within the horizon study's tolerance of the
+    mpmath reference) of the horizon regime with the scene's gamma, mu and psi(0)."""
+    for name in horizon["regime"].values:
+        d = horizon.sel(regime=name)
+        if all(np.isclose(float(d[k]), float(ds.attrs[a])) for k, a in (("gamma", "gamma"), ("mu", "mu"), ("psi0", "x0"))):
+            return int(d["horizon"].sel(precision="float64"))
+    raise ValueError(f"horizon study has no regime with gamma = {ds.attrs['gamma']}, mu = {ds.attrs['mu']}, "
+                     f"psi(0) = {ds.attrs['x0']} (config reduced.horizon.regimes)")
+
+
+def rest_coeff(datasets, spec, outputs) -> None:
     """Fig. rest-coeff: r_n = f_{n+1}/f_n with f_n = tau_{2n} (eqs. Falcon-rest-coeff, my-time-of-flight).
 
     Indexing: t_0 = 0 is the release and t_n the n-th impact, so tau_n = t_{n+1} - t_n is
-    ``tau[n]`` of the file (duration ending at event n, 0-based) and tau_0 is the initial
-    fall.  From rest the impacts come in pairs (double impacts, section 8.1): tau_{2n-1}
-    are the short intra-contact flights, tau_{2n} the macroscopic ones, so f_n = tau_{2n}.
-    f_0 is the release (half a parabola), hence r_n is plotted from n = 1.
+    ``tau[n]`` of the file and tau_0 is the initial fall.  From rest the impacts come in pairs
+    (double impacts, section 8.1): tau_{2n-1} ~ T_xi is the flight inside the n-th contact,
+    tau_{2n} the macroscopic flight after it, so f_n = tau_{2n} (f_0, the release, is excluded).
+    The pairing holds for the first R contacts (R = ``double_run`` of check restitution: the
+    contact flight within its band of T_xi); r_n needs contacts n and n + 1, so it is drawn for
+    n < R only -- beyond, f_n = tau_{2n} is no longer a macroscopic flight.  The float64
+    predictability horizon H (impact times t_1..t_H, horizon study) bounds r_n too: r_n reads
+    t_{2n}..t_{2n+3}.  Inputs: the scene, results/checks/restitution.nc, results/methods/horizon.nc.
+    (b) shows the contact r_n spans (contact n + 1, inner flight tau_{2n+1}), where the pairing breaks.
     """
+    ds, restitution, horizon = datasets
     _impact_only(ds)
     tau = ds["tau"].values
     mu = float(ds.attrs["mu"])
-    n_max = int(spec.get("n_max", 150))
-    f = tau[0::2]
-    n = np.arange(1, min(n_max, f.size - 2) + 1)
-    r = f[n + 1] / f[n]
     T_xi = np.pi / np.sqrt(1.0 - mu**2)
-    fig, ax = plt.subplots(figsize=(WIDTH, 3.0))
-    ax.plot(n, r, "o", ms=2.5, color="C0", label=r"$r_n = f_{n+1}/f_n$, $f_n=\tau_{2n}$")
-    ax.axhline(np.exp(-mu * T_xi), color="C3", ls="--", label=r"$e^{-\mu T_\xi}$ (eq. rest-coefficient-function-of-mu)")
-    ax.set_xlabel(r"$n$ (macroscopic flight)")
+    paired = int(restitution.attrs["double_run"])  # contacts 1..paired are double impacts
+    h64 = _horizon_impacts(horizon, ds)
+    n_h = (h64 - 3) // 2  # last n whose r_n reads impacts within the horizon only
+    n_last = min(int(spec.get("n_max", 150)), paired - 1, (tau.size - 4) // 2)
+    n = np.arange(1, n_last + 1)
+    r = tau[2 * n + 2] / tau[2 * n]
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(WIDTH, 3.9), sharex=True, height_ratios=(2.2, 1.0))
+    ax.plot(n, r, "o", ms=3, color="C0", label=r"$r_n = f_{n+1}/f_n$, $f_n=\tau_{2n}$ (eq. Falcon-rest-coeff)")
+    ax.axhline(np.exp(-mu * T_xi), color="C3", ls="--",
+               label=r"$e^{-\mu T_\xi}=%.4f$ (eq. rest-coefficient-function-of-mu)" % np.exp(-mu * T_xi))
+    # (b) the contact between f_n and f_{n+1}: contact n + 1, its inner flight tau_{2n+1}
+    m = np.arange(1, min(n_last + 6, (tau.size - 2) // 2) + 1)
+    contact = tau[2 * m + 1] / T_xi
+    ok = m + 1 <= paired
+    bx.plot(m[ok], contact[ok], "o", ms=2.5, color="C0", label="double impact")
+    bx.plot(m[~ok], contact[~ok], "x", ms=4, color="C3", label="not a double impact")
+    bx.axhline(1.0, color="k", lw=0.6, ls=":")
+    marks = [(paired - 0.5, "C3", "-", "pairing ends (contact %d)" % (paired + 1))]
+    if n_h < m[-1]:
+        marks.append((n_h + 0.5, "0.3", "-.", r"float64 horizon ($t_{%d}$)" % h64))
+    for x, color, style, text in marks:
+        for axis in (ax, bx):
+            axis.axvline(x, color=color, lw=0.9, ls=style)
+        ax.text(x + 0.3, 0.5, text, transform=ax.get_xaxis_transform(), rotation=90, ha="left", va="center",
+                fontsize=6, color=color)
+    ax.set_xlim(0, m[-1] + 1)
     ax.set_ylabel(r"$r_n$")
-    lo, hi = spec.get("r_range", (0.6, 1.1))
-    out = (r < lo) | (r > hi)
-    ax.plot(n[out], np.clip(r[out], lo, hi), "^", ms=3, color="C0", mfc="none",
-            label="outside the range (clipped)" if out.any() else None)
-    ax.set_ylim(lo - 0.01, hi + 0.01)
-    ax.set_title(r"Fig. rest-coeff: $\gamma=%g$, $\mu=%g$, $\psi(0)=%g$" % (ds.attrs["gamma"], mu, ds.attrs["x0"]))
-    ax.legend(loc="lower left")
+    ax.legend(loc="center left", fontsize=7)
+    ax.set_title(r"Fig. rest-coeff: $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
+                 % (tex_num(ds.attrs["gamma"]), tex_num(mu), tex_num(ds.attrs["x0"])))
+    bx.set_ylabel(r"$\tau_{2n+1}/T_\xi$", fontsize=8)
+    bx.set_xlabel(r"$n$ (macroscopic flight)")
+    bx.set_title(r"(b) the contact between $f_n$ and $f_{n+1}$: its inner flight $\tau_{2n+1}\approx T_\xi$ "
+                 r"while the impacts come in pairs", fontsize=7, loc="left", pad=2)
+    bx.legend(loc="upper left", fontsize=6, ncol=2)
+    fig.tight_layout()
     save(fig, outputs)
 
 
