@@ -35,8 +35,8 @@ def rigid_fall(ds, spec, outputs) -> None:
     label_time(ax)
     ax.set_ylabel(r"height  [$L$]")
     ax.set_xlim(t0, t1)
-    ax.set_title(r"Fig. rigid-fall: $\gamma=\mu=%g$, $\psi(0)=%g$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
-                 % (ds.attrs["gamma"], ds.attrs["x0"]))
+    ax.set_title(r"Fig. rigid-fall: $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
+                 % (tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"]), tex_num(ds.attrs["x0"])))
     ax.legend(loc="upper center", ncol=3, bbox_to_anchor=(0.5, -0.16), frameon=False)
     inset = spec.get("inset")
     if inset:
@@ -51,6 +51,10 @@ def rigid_fall(ds, spec, outputs) -> None:
         ins.set_xlim(a, b)
         ins.set_ylim(c, d)
         ins.tick_params(labelsize=6)
+        ins.set_xlabel(r"$t$", fontsize=6, labelpad=1)
+        ins.yaxis.tick_right()  # tick labels and label right of the inset, off the main curves
+        ins.yaxis.set_label_position("right")
+        ins.set_ylabel(r"height [$L$]", fontsize=6, labelpad=2)
         ins.grid(alpha=0.3)
         rect, connectors = ax.indicate_inset_zoom(ins, edgecolor="k")
         rect.set_linestyle("--")
