@@ -11,6 +11,8 @@ rule study:
         spec=lambda w: as_json(STUDIES[w.name]),
     log:
         "results/logs/methods/{name}.log",
+    benchmark:
+        "results/timing/methods/{name}.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in STUDIES),
     shell:
