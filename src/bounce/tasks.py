@@ -71,6 +71,14 @@ def _study(args) -> None:
     plot(ds, args.spec, args.out[1:])
 
 
+def _readme(args) -> None:
+    """Rewrite the README's generated block from the outputs under ``--inputs`` (the results folder)."""
+    from .io import git_info
+    from .readme import block, update
+
+    update(Path(args.out[0]), block(Path(args.inputs[0]), git_info()[0]))
+
+
 def _thumbnails(args) -> None:
     from .figures.common import thumbnail
 
@@ -87,6 +95,7 @@ TASKS = {
     "report": _report,
     "study": _study,
     "thumbnails": _thumbnails,
+    "readme": _readme,
 }
 
 
