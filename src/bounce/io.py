@@ -324,6 +324,19 @@ def from_dataset(ds: xr.Dataset) -> Trajectory:
     return _trajectory(ds)
 
 
+def split_timings(ds: xr.Dataset) -> tuple[xr.Dataset, xr.Dataset]:
+    """``(result, timings)``: the variables measured in seconds (CPU or wall time) go to ``timings``.
+
+    Results must be byte-identical across reruns; timings never are.  The pipeline writes the two to
+    separate files (``results/methods/<study>.nc`` and ``results/timing/methods/<study>-cpu.nc``).
+    """
+    timed = [name for name, var in ds.data_vars.items() if var.attrs.get("units") == "s"]
+    timings = ds[timed]
+    timings.attrs = {"title": f"timings of: {ds.attrs.get('title', '')}", "Conventions": "CF-1.10",
+                     "comment": "CPU (process) or wall seconds on a shared machine: not reproducible by design"}
+    return ds.drop_vars(timed), timings
+
+
 def read_dataset(path) -> xr.Dataset:
     """Open a bounce netCDF file, load it into memory and close it."""
     with xr.open_dataset(path, engine="netcdf4") as ds:

@@ -5,8 +5,9 @@ between the markers ``<!-- numbers:begin -->`` and ``<!-- numbers:end -->`` from
 
 * ``results/checks/*.nc``: the validation counts per kind of claim (:func:`bounce.report.kind_counts`);
 * ``results/methods/horizon.nc``: the float64 predictability horizon per regime;
-* ``results/methods/work-precision.nc``: the best accuracy each method reached and its CPU time
-  per flight against the exact solver's, measured in the same run;
+* ``results/methods/work-precision.nc`` and its timings ``results/timing/methods/work-precision-cpu.nc``:
+  the best accuracy each method reached and its CPU time per flight against the exact solver's,
+  measured in the same run;
 * ``results/timing/pipeline.json`` (``benchmarks/bench_pipeline.py``): wall time, cores and load;
   ``results/timing/**/*.tsv``: the CPU time of every job (Snakemake benchmark files);
 * ``results/timing/bench-simulator.json`` (``benchmarks/bench_simulator.py --json ...``) when present.
@@ -63,15 +64,16 @@ def horizon_lines(results: Path) -> list[str]:
 
 def work_precision_lines(results: Path) -> list[str]:
     path = results / "methods" / "work-precision.nc"
-    if not path.exists():
+    timing = results / "timing" / "methods" / "work-precision-cpu.nc"
+    if not (path.exists() and timing.exists()):
         return []
-    with xr.open_dataset(path) as ds:
+    with xr.open_dataset(path) as ds, xr.open_dataset(timing) as tds:
         method = ds["method"].values
-        cpu = ds["cpu_per_flight"].values
+        cpu = tds["cpu_per_flight"].values
         err_t = ds["err_impact_times"].values
         err_1 = ds["err_one_step_max"].values
         exact_cpu = float(np.nanmedian(cpu[method == "exact"]))
-        lines = [f"- Work-precision on the drop (`results/methods/work-precision.nc`, n_h = {int(ds.attrs['n_h'])}; "
+        lines = [f"- Work-precision on the drop (`results/methods/work-precision.nc`, `results/timing/methods/`, n_h = {int(ds.attrs['n_h'])}; "
                  "best over the settings tried; CPU per flight relative to the exact solver in the same run):"]
         for m in dict.fromkeys(method):
             if m == "exact":

@@ -62,13 +62,19 @@ def _report(args) -> None:
 
 
 def _study(args) -> None:
-    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset and its figure."""
+    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset, its timings, its figure.
+
+    ``--out NC TIMING_NC PNG PDF``: the CPU times go to TIMING_NC so that NC is byte-reproducible.
+    """
+    from .io import split_timings
     from .studies import STUDIES
 
     build, plot = STUDIES[args.name].functions()
     ds = build(args.spec)
-    write_netcdf(ds, args.out[0])
-    plot(ds, args.spec, args.out[1:])
+    result, timings = split_timings(ds)
+    write_netcdf(result, args.out[0])
+    write_netcdf(timings, args.out[1])
+    plot(ds, args.spec, args.out[2:])
 
 
 def _readme(args) -> None:
