@@ -1,0 +1,365 @@
+"""Flights of the power-law spring and the first-contact root finder that cannot skip an impact.
+
+Variables as in :mod:`bounce.flight`: x >= 0 the height of the lower mass, u = x',
+v = xi', and eta = xi - xi_eq, the deviation from the static equilibrium
+xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), so that states
+~1e-13 from equilibrium keep their digits.  With psi'' = -gamma and the spring of
+eq. ``eq-motion-nonlin-psi-xi``, a flight is computed in *steps*; over a step of
+length h from (x, u, v, eta) with the Taylor coefficients X_k of xi
+(:mod:`bounce.power_series`), D(s) = sum_{k>=2} X_k s^k and, for 0 <= s <= h,
+
+    x(s) = x + u s - gamma s^2/2 - D(s),   x'(s) = u - gamma s - D'(s),
+    eta(s) = eta + v s + D(s),             xi'(s) = v + D'(s)                (P)
+
+(x = psi - xi as a displacement from the step's start: nothing of size xi_eq is
+ever subtracted).  The degree and the step are chosen so that the rigorous tail
+bound of the series is below 2^-55 of the rounding scale of x (x + |u| s +
+gamma s^2/2) and of x' (|u| + gamma s): the polynomial is then the flight to rounding.
+
+No impact is skipped (:func:`first_contact`).  In flight the spring energy
+E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) does not increase (d/dt E_s = -2 mu xi'^2 |xi|^b),
+so from any time on |xi| <= W = ((a+2) E_s / rho)^(1/(a+2)), |xi'| <= V = sqrt(2 E_s) and
+
+    |x''| = |gamma + xi''| <= B = gamma + rho W^(a+1) + 2 mu V W^b.
+
+From a point with x > 0, x' = w, Taylor's theorem gives x(s) >= x + w s - B s^2/2,
+whose smallest positive root is a step that cannot cross the floor (as in
+:func:`bounce.flight.first_contact`); B is refreshed at every series step.  The
+march evaluates (P) within rounding, so the only roots it can miss are dips of x
+below the floor shallower than its rounding error, which no float64 computation
+sees.  A step that passes a minimum of x (x' turns from negative to
+non-negative) locates it, and a minimum within rounding of the floor is a
+tangential contact.  At the root (|x| <= 4 eps scale) one Newton step polishes it.
+
+The non-analytic point xi = 0 (a, b not both 0).  The series around xi0 has
+radius <= |xi0| / |xi'|-ish, so steps shrink geometrically towards xi = 0; once
+|xi| <= delta with
+
+    delta = min( (2^-57 v^2 / (rho 1.01^(a+1)))^(1/(a+2)),  (2^-58 v^2 / (mu V 1.01^b))^(1/(b+1)) ),
+
+the crossing is one *window*: xi moves at constant speed v to the point
+sign(v) delta on the other side in T <= 2 delta/|v|.  There |xi''| <= F =
+rho (1.01 delta)^(a+1) + 2 mu V (1.01 delta)^b, so the neglected change of xi' is
+<= F T <= 2^-55 |v| and that of xi (and of x) <= F T^2/2 <= 2^-56 |v| T: the window
+is exact to rounding.  The floor is checked over the window with the safe step
+(an impact inside a 1e-11-wide crossing window is reported as FAILED, not guessed).
+
+Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
+regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
+(cubic predictor, Newton steps certified to keep x > 0 before the root and to be
+within rounding of it).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .events import compensated_add
+from .flight import EPS, FAILED, FOUND, HORIZON, safe_step
+from .power_series import (
+    DEGREE_LONG,
+    DEGREE_SHORT,
+    L_AP1,
+    L_B,
+    L_GAMMA,
+    L_MU,
+    L_RHO,
+    L_XI_EQ,
+    MARGIN,
+    L_ANALYTIC_A,
+    L_ANALYTIC_B,
+    cauchy_radius,
+    curvature,
+    displacement,
+    powers_at,
+    tail_bounds,
+    taylor_coefficients,
+)
+
+#: 2^-55: truncation target relative to the rounding scale.
+TOL = 2.0**-55
+#: cap on evaluations per flight (a crawl towards a tangency needs ~1e3).
+MAX_EVALS = 400_000
+#: status: the hot path hands over to the general stepper.
+HANDOVER = 4
+#: status: the flight starts at rest on the floor with x'' <= 0 (a sticky state).
+AT_REST = 5
+
+
+@njit(cache=True)
+def spring_energy(w0, v, p0, law):
+    """E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) (the spring part of eq. ``nonlin-energy``)."""
+    return 0.5 * v * v + law[L_RHO] * w0 * p0 / (law[L_AP1] + 1.0)
+
+
+@njit(cache=True)
+def curvature_bound(Es, law):
+    """B >= |x''| for the rest of the flight from the spring energy Es (module docstring)."""
+    gamma = law[L_GAMMA]
+    if Es <= 0.0:
+        return gamma * MARGIN
+    rho = law[L_RHO]
+    ap2 = law[L_AP1] + 1.0
+    Es *= MARGIN
+    W = (ap2 * Es / rho) ** (1.0 / ap2)
+    Wq = 1.0 if law[L_ANALYTIC_B] == 1.0 else W ** law[L_B]
+    return (gamma + ap2 * Es / W + 2.0 * law[L_MU] * math.sqrt(2.0 * Es) * Wq) * MARGIN  # rho W^(a+1) = ap2 Es / W
+
+
+@njit(cache=True)
+def crossing_halfwidth(v, Es, law):
+    """delta of the window through xi = 0 (module docstring); 0 if v = 0."""
+    if v == 0.0:
+        return 0.0
+    v2 = v * v
+    d1 = (2.0**-57 * v2 / (law[L_RHO] * 1.01 ** law[L_AP1])) ** (1.0 / (law[L_AP1] + 1.0))
+    mu = law[L_MU]
+    if mu == 0.0:
+        return d1
+    d2 = (2.0**-58 * v2 / (mu * math.sqrt(2.0 * Es) * MARGIN * 1.01 ** law[L_B])) ** (1.0 / (law[L_B] + 1.0))
+    return min(d1, d2)
+
+
+@njit(cache=True)
+def _evaluate(s, x, u, gamma, K, X):
+    """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s)."""
+    D, Dp = displacement(s, K, X)
+    xs = x + u * s - 0.5 * gamma * s * s - D
+    vs = u - gamma * s - Dp
+    scale = x + abs(u) * s + 0.5 * gamma * s * s + abs(D)
+    return xs, vs, scale, D, Dp
+
+
+@njit(cache=True)
+def _minimum(s0, v0, s1, x, u, gamma, K, X):
+    """Time of the minimum of x between s0 (x' = v0 < 0) and s1 (x' >= 0): Newton on x' kept in the bracket."""
+    lo, hi = s0, s1
+    s = 0.5 * (s0 + s1)
+    for _ in range(60):
+        if not lo < s < hi:
+            s = 0.5 * (lo + hi)
+        _, vs, _, _, _ = _evaluate(s, x, u, gamma, K, X)
+        if vs < 0.0:
+            lo = s
+        else:
+            hi = s
+        A = -gamma - curvature(s, K, X)[0]
+        step = -vs / A if A > 0.0 else 0.0
+        if step == 0.0 or abs(step) <= 4.0 * EPS * s or hi - lo <= 4.0 * EPS * hi:
+            break
+        s += step
+    return s
+
+
+@njit(cache=True)
+def _liftoff(acc, h, radius, Rz, Rp, K, X):
+    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0.
+
+    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S]; S halves until positive.
+    """
+    S = h
+    for _ in range(400):
+        poly = 0.0
+        for k in range(K, 2, -1):
+            poly = poly * S + abs(X[k])
+        tail = tail_bounds(S / radius, K, Rz, Rp)[0]
+        if 0.5 * acc > poly * S + tail / (S * S):
+            return S
+        S *= 0.5
+    return 0.0
+
+
+@njit(cache=True)
+def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
+    """First time tau in (0, t_limit] with x(tau) = 0 for the flight from (x, u, v, eta).
+
+    Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
+    ``(status, tau, x'(tau), scale, eta(tau), xi'(tau), x''(tau), x'''(tau))``:
+    status FOUND (polished root, or a minimum within rounding of the floor),
+    HORIZON (no contact up to t_limit; the state fields then hold the state at
+    t_limit with x in place of x'(tau)'s neighbour: see power_events), AT_REST (x = u = 0 and
+    x'' <= 0: the mass cannot lift off) or FAILED (evaluation cap, or a floor contact inside a
+    crossing window).
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi_eq = law[L_XI_EQ]
+    singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
+    K = DEGREE_LONG
+    t_hi, t_lo = 0.0, 0.0
+    B = math.inf
+    evals = 0
+    while evals < MAX_EVALS:
+        t = t_hi + t_lo
+        xi0 = xi_eq + eta
+        w0 = abs(xi0)
+        p0, q0 = powers_at(w0, law)
+        Es = spring_energy(w0, v, p0, law)
+        B = min(B, curvature_bound(Es, law))
+        if Es == 0.0:
+            # spring at rest at its rest length: xi stays 0, x is the parabola of free fall
+            root = math.sqrt(u * u + 2.0 * gamma * x)
+            s = (u + root) / gamma
+            if t + s > t_limit:
+                return HORIZON, t_limit, u, x, eta, v, -gamma, 0.0
+            t_hi, t_lo = compensated_add(t_hi, t_lo, s)
+            return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta, v, -gamma, 0.0
+        if singular and w0 <= crossing_halfwidth(v, Es, law):
+            delta = crossing_halfwidth(v, Es, law)
+            T = ((delta if v > 0.0 else -delta) - xi0) / v
+            if not (x == 0.0 and u == 0.0) and safe_step(x, u, B) <= T:
+                return FAILED, t, u, x, eta, v, 0.0, 0.0
+            if t + T > t_limit:
+                return HORIZON, t_limit, u, x, eta, v, 0.0, 0.0
+            x = x + u * T - 0.5 * gamma * T * T
+            u = u - gamma * T
+            eta = eta + v * T
+            t_hi, t_lo = compensated_add(t_hi, t_lo, T)
+            evals += 1
+            continue
+        radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+        theta = 0.5
+        for _ in range(200):
+            h = theta * radius
+            tx, tv = tail_bounds(theta, K, Rz, Rp)
+            if tx <= TOL * (x + abs(u) * h + 0.5 * gamma * h * h) and tv <= TOL * (abs(u) + gamma * h):
+                break
+            theta *= 0.7
+        h = theta * radius
+        last = t + h >= t_limit
+        if last:
+            h = t_limit - t
+        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, K, X, P, Q)
+        s = 0.0
+        xs, vs = x, u
+        if x == 0.0 and u == 0.0:
+            acc = -gamma - 2.0 * X[2]
+            if not acc > 0.0:
+                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3]
+            s = _liftoff(acc, h, radius, Rz, Rp, K, X)
+            if s == 0.0:
+                return FAILED, t, u, x, eta, v, 0.0, 0.0
+            xs, vs, _, _, _ = _evaluate(s, x, u, gamma, K, X)
+        while evals < MAX_EVALS:
+            evals += 1
+            s_new = s + safe_step(xs, vs, B)
+            at_end = s_new >= h
+            if at_end:
+                s_new = h
+            s_prev, v_prev = s, vs
+            s = s_new
+            xs, vs, scale, D, Dp = _evaluate(s, x, u, gamma, K, X)
+            if xs <= 4.0 * EPS * scale:
+                if vs < 0.0:  # Newton polish, re-evaluated at the polished time
+                    s = s - xs / vs
+                    xs, vs, scale, D, Dp = _evaluate(s, x, u, gamma, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, v, gamma, D, Dp, K, X)
+            if v_prev < 0.0 <= vs:
+                sm = _minimum(s_prev, v_prev, s, x, u, gamma, K, X)
+                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, u, gamma, K, X)
+                if xm <= 4.0 * EPS * sc_m:
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, v, gamma, Dm, Dpm, K, X)
+            if at_end:
+                break
+        if last:
+            return HORIZON, t_limit, vs, xs, eta + v * h + D, v + Dp, 0.0, 0.0
+        x, u, eta, v = xs, vs, eta + v * h + D, v + Dp
+        t_hi, t_lo = compensated_add(t_hi, t_lo, h)
+    return FAILED, t_hi + t_lo, u, x, eta, v, 0.0, 0.0
+
+
+@njit(cache=True)
+def _contact(t_hi, t_lo, s, vs, scale, eta, v, gamma, D, Dp, K, X):
+    """FOUND record at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
+    D2, D3 = curvature(s, K, X)
+    t_hi, t_lo = compensated_add(t_hi, t_lo, s)
+    return FOUND, t_hi + t_lo, vs, scale, eta + v * s + D, v + Dp, -gamma - D2, -D3
+
+
+@njit(cache=True)
+def short_flight(u, v, eta, law, X, P, Q):
+    """First contact of a flight from the floor (x = 0, x' = u > 0) as one series step.
+
+    Returns what :func:`first_contact` returns, or status HANDOVER when the flight
+    is not one short step (then the caller runs :func:`first_contact`).
+
+    Window T = 2.5 u / (gamma + |xi''(0)|) (over-estimates the flight, whose
+    curvature is ~ gamma + xi''); degree K the least for which the tail bounds on
+    [0, T] are below 2^-55 u T (x) and 2^-55 u (x').  Fast path: the root t_p of
+    the cubic model, then Newton steps dt = -x/x', each certified as in
+    :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
+    B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
+    from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
+    (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x.  Otherwise the safe march.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi0 = law[L_XI_EQ] + eta
+    w0 = abs(xi0)
+    if w0 == 0.0:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    p0, q0 = powers_at(w0, law)
+    sigma_p0 = p0 if xi0 > 0.0 else -p0
+    xidd0 = -rho * sigma_p0 - 2.0 * mu * v * q0
+    T = 2.5 * u / (gamma + abs(xidd0))
+    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+    theta = T / radius
+    if not theta <= 0.25:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    tol_x = TOL * u * T
+    tol_v = TOL * u
+    K = 3
+    while True:
+        tx, tv = tail_bounds(theta, K, Rz, Rp)
+        if tx <= tol_x and tv <= tol_v:
+            break
+        K += 1
+        if K > DEGREE_SHORT:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, K, X, P, Q)
+    B = curvature_bound(spring_energy(w0, v, p0, law), law)
+    A0 = -gamma - 2.0 * X[2]
+    disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
+    if A0 < 0.0 and disc > 0.0:
+        t = 2.0 * u / (math.sqrt(disc) - 0.5 * A0)
+        for _ in range(4):
+            if not 0.0 < t <= T:
+                break
+            xs, vs, scale, D, Dp = _evaluate(t, 0.0, u, gamma, K, X)
+            if not vs < 0.0:
+                break
+            dt = -xs / vs
+            if B * dt * dt <= 8.0 * EPS * scale:
+                if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
+                    # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
+                    D2, D3 = curvature(t, K, X)
+                    D += Dp * dt
+                    Dp += D2 * dt
+                    t += dt
+                    return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
+                break
+            t += dt
+    # general march from the first safe step
+    s = 2.0 * u / B
+    if s > T:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    for _ in range(64):
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, u, gamma, K, X)
+        if xs <= 4.0 * EPS * scale:
+            break
+        s_new = s + safe_step(xs, vs, B)
+        if s_new > T or vs >= 0.0:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        if s_new == s:
+            break
+        s = s_new
+    else:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    if vs < 0.0:
+        s -= xs / vs
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, u, gamma, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, v, gamma, D, Dp, K, X)
