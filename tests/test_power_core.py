@@ -36,16 +36,23 @@ def one_flight(params, spring, u, a, eta, x=0.0):
     return simulate_power(params, spring, Deviations(x=x, xdot=u, xidot=a, eta=eta), max_events=1)
 
 
-def assert_flight_matches(tr_pow, ref, i, rel=1e-14):
-    """Event 0 of tr_pow against event i of the linear reference, to rel per component."""
+def assert_flight_matches(tr_pow, ref, i, start, rel=1e-14):
+    """Event 0 of tr_pow against event i of the linear reference, to rel per component.
+
+    ``start`` = (u0, a0, eta0) of the flight.  Each component is compared relative to
+    the larger of its value and the terms it is summed from (the rounding of a correct
+    result): x' and tau to themselves; xi' = psi'(tau-) = u0 + a0 - gamma tau to
+    |u0| + |a0| + gamma tau; eta(tau) = eta0 + (xi(tau) - xi0) to |eta| + |eta - eta0|.
+    """
+    u0, a0, eta0 = start
     tau, u, a, eta = ref.tau[i], ref.xdot[i], ref.xidot[i], ref.eta[i]
     assert tr_pow.kind[0] == ref.kind[i]
     assert abs(tr_pow.tau[0] - tau) <= rel * tau, (i, tr_pow.tau[0], tau)
     assert abs(tr_pow.xdot[0] - u) <= rel * abs(u), (i, tr_pow.xdot[0], u)
-    # xi' after an impact is psi'(tau-) = u0 + a0 - gamma tau: rounding relative to its terms
-    a_scale = abs(a) + ref.params.gamma * tau
+    a_scale = abs(u0) + abs(a0) + ref.params.gamma * tau
     assert abs(tr_pow.xidot[0] - a) <= rel * a_scale, (i, tr_pow.xidot[0], a)
-    assert abs(tr_pow.eta[0] - eta) <= rel * abs(eta), (i, tr_pow.eta[0], eta)
+    eta_scale = abs(eta) + abs(eta - eta0)
+    assert abs(tr_pow.eta[0] - eta) <= rel * eta_scale, (i, tr_pow.eta[0], eta)
 
 
 # --------------------------------------------------------------------- the law
@@ -88,10 +95,10 @@ def test_linear_law_matches_closed_form_per_flight_from_a_drop(gamma, mu):
     ref = simulate(params, State.from_psi_xi(3.0, 0.0, 0.0, 0.0), max_events=120)
     assert all(k == IMPACT for k in ref.kind)
     first = simulate_power(params, LINEAR, State.from_psi_xi(3.0, 0.0, 0.0, 0.0), max_events=1)
-    assert_flight_matches(first, ref, 0)
+    assert_flight_matches(first, ref, 0, (0.0, 0.0, gamma))
     for i in range(len(ref) - 1):
-        tr = one_flight(params, LINEAR, ref.xdot[i], ref.xidot[i], ref.eta[i])
-        assert_flight_matches(tr, ref, i + 1)
+        start = ref.xdot[i], ref.xidot[i], ref.eta[i]
+        assert_flight_matches(one_flight(params, LINEAR, *start), ref, i + 1, start)
 
 
 @pytest.mark.parametrize("gamma, mu", [(0.01, 0.01), (0.1, 0.5)])
@@ -101,8 +108,8 @@ def test_linear_law_matches_closed_form_deep_near_equilibrium(gamma, mu):
     start = Deviations(x=0.0, xdot=1e-8, xidot=-3e-9, eta=2e-9)
     ref = simulate(params, start, max_events=3000)
     for i in list(range(0, 40)) + list(range(2900, 2999)):
-        tr = one_flight(params, LINEAR, ref.xdot[i], ref.xidot[i], ref.eta[i])
-        assert_flight_matches(tr, ref, i + 1)
+        start = ref.xdot[i], ref.xidot[i], ref.eta[i]
+        assert_flight_matches(one_flight(params, LINEAR, *start), ref, i + 1, start)
 
 
 def test_linear_law_whole_run_tracks_closed_form():

@@ -14,7 +14,10 @@ length h from (x, u, v, eta) with the Taylor coefficients X_k of xi
 (x = psi - xi as a displacement from the step's start: nothing of size xi_eq is
 ever subtracted).  The degree and the step are chosen so that the rigorous tail
 bound of the series is below 2^-55 of the rounding scale of x (x + |u| s +
-gamma s^2/2) and of x' (|u| + gamma s): the polynomial is then the flight to rounding.
+gamma s^2/2) and of x' (|u| + gamma s), and of xi (|xi0| + |v| s + |xi''(0)| s^2/2)
+and xi' (|v| + |xi''(0)| s) where those are smaller: the polynomial is then the
+flight to rounding (a tolerance relative to x alone would let a systematic
+truncation error of the spring build up over the steps of a long flight).
 
 No impact is skipped (:func:`first_contact`).  In flight the spring energy
 E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) does not increase (d/dt E_s = -2 mu xi'^2 |xi|^b),
@@ -123,24 +126,29 @@ def crossing_halfwidth(v, Es, law):
 
 
 @njit(cache=True)
-def _evaluate(s, x, u, gamma, K, X):
-    """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s)."""
+def _evaluate(s, x, xl, u, ul, gamma, K, X):
+    """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s).
+
+    (x + xl, u + ul) is the step's start state carried with its compensation terms
+    (Neumaier sums over the steps of a long flight): the increment is added to x
+    first, where near a root it cancels exactly, then the small terms.
+    """
     D, Dp = displacement(s, K, X)
-    xs = x + u * s - 0.5 * gamma * s * s - D
-    vs = u - gamma * s - Dp
+    xs = (x + (u * s - 0.5 * gamma * s * s - D)) + (xl + ul * s)
+    vs = (u + (-gamma * s - Dp)) + ul
     scale = x + abs(u) * s + 0.5 * gamma * s * s + abs(D)
     return xs, vs, scale, D, Dp
 
 
 @njit(cache=True)
-def _minimum(s0, v0, s1, x, u, gamma, K, X):
-    """Time of the minimum of x between s0 (x' = v0 < 0) and s1 (x' >= 0): Newton on x' kept in the bracket."""
+def _minimum(s0, s1, x, xl, u, ul, gamma, K, X):
+    """Time of the minimum of x between s0 (x' < 0) and s1 (x' >= 0): Newton on x' kept in the bracket."""
     lo, hi = s0, s1
     s = 0.5 * (s0 + s1)
     for _ in range(60):
         if not lo < s < hi:
             s = 0.5 * (lo + hi)
-        _, vs, _, _, _ = _evaluate(s, x, u, gamma, K, X)
+        _, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, K, X)
         if vs < 0.0:
             lo = s
         else:
@@ -178,10 +186,11 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
     Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
     ``(status, tau, x'(tau), scale, eta(tau), xi'(tau), x''(tau), x'''(tau))``:
     status FOUND (polished root, or a minimum within rounding of the floor),
-    HORIZON (no contact up to t_limit; the state fields then hold the state at
-    t_limit with x in place of x'(tau)'s neighbour: see power_events), AT_REST (x = u = 0 and
-    x'' <= 0: the mass cannot lift off) or FAILED (evaluation cap, or a floor contact inside a
-    crossing window).
+    HORIZON (no contact up to t_limit), AT_REST (x = u = 0 and x'' <= 0: the mass
+    cannot lift off) or FAILED (evaluation cap, or a floor contact inside a crossing
+    window); the other fields are meaningful at FOUND only.  The state is carried
+    from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
+    that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]
@@ -190,6 +199,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
     singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
     K = DEGREE_LONG
     t_hi, t_lo = 0.0, 0.0
+    xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
     B = math.inf
     evals = 0
     while evals < MAX_EVALS:
@@ -201,31 +211,37 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
         B = min(B, curvature_bound(Es, law))
         if Es == 0.0:
             # spring at rest at its rest length: xi stays 0, x is the parabola of free fall
+            u += ul
+            x += xl
             root = math.sqrt(u * u + 2.0 * gamma * x)
-            s = (u + root) / gamma
+            s = (u + root) / gamma if u >= 0.0 else 2.0 * x / (root - u)
             if t + s > t_limit:
-                return HORIZON, t_limit, u, x, eta, v, -gamma, 0.0
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
-            return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta, v, -gamma, 0.0
+            return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         if singular and w0 <= crossing_halfwidth(v, Es, law):
             delta = crossing_halfwidth(v, Es, law)
             T = ((delta if v > 0.0 else -delta) - xi0) / v
-            if not (x == 0.0 and u == 0.0) and safe_step(x, u, B) <= T:
-                return FAILED, t, u, x, eta, v, 0.0, 0.0
+            if not (x == 0.0 and u == 0.0) and safe_step(x + xl, u + ul, B) <= T:
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             if t + T > t_limit:
-                return HORIZON, t_limit, u, x, eta, v, 0.0, 0.0
-            x = x + u * T - 0.5 * gamma * T * T
-            u = u - gamma * T
-            eta = eta + v * T
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            x, xl = compensated_add(x, xl, u * T - 0.5 * gamma * T * T + ul * T)
+            u, ul = compensated_add(u, ul, -gamma * T)
+            eta, el = compensated_add(eta, el, v * T + vl * T)
             t_hi, t_lo = compensated_add(t_hi, t_lo, T)
             evals += 1
             continue
         radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+        xidd0 = abs(rho * p0 + 2.0 * mu * v * q0 * (1.0 if xi0 >= 0.0 else -1.0))  # |xi''(0)|
         theta = 0.5
         for _ in range(200):
             h = theta * radius
             tx, tv = tail_bounds(theta, K, Rz, Rp)
-            if tx <= TOL * (x + abs(u) * h + 0.5 * gamma * h * h) and tv <= TOL * (abs(u) + gamma * h):
+            # rounding scales of x, x' and of xi, xi' over the step: the tail stays below the smaller
+            scale_x = min(x + abs(u) * h + 0.5 * gamma * h * h, w0 + abs(v) * h + 0.5 * xidd0 * h * h)
+            scale_v = min(abs(u) + gamma * h, abs(v) + xidd0 * h)
+            if tx <= TOL * scale_x and tv <= TOL * scale_v:
                 break
             theta *= 0.7
         h = theta * radius
@@ -234,15 +250,16 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             h = t_limit - t
         taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, K, X, P, Q)
         s = 0.0
-        xs, vs = x, u
+        xs, vs = x + xl, u + ul
         if x == 0.0 and u == 0.0:
             acc = -gamma - 2.0 * X[2]
             if not acc > 0.0:
                 return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3]
             s = _liftoff(acc, h, radius, Rz, Rp, K, X)
             if s == 0.0:
-                return FAILED, t, u, x, eta, v, 0.0, 0.0
-            xs, vs, _, _, _ = _evaluate(s, x, u, gamma, K, X)
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, K, X)
+        D, Dp = 0.0, 0.0
         while evals < MAX_EVALS:
             evals += 1
             s_new = s + safe_step(xs, vs, B)
@@ -251,32 +268,35 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 s_new = h
             s_prev, v_prev = s, vs
             s = s_new
-            xs, vs, scale, D, Dp = _evaluate(s, x, u, gamma, K, X)
+            xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, K, X)
             if xs <= 4.0 * EPS * scale:
                 if vs < 0.0:  # Newton polish, re-evaluated at the polished time
                     s = s - xs / vs
-                    xs, vs, scale, D, Dp = _evaluate(s, x, u, gamma, K, X)
-                return _contact(t_hi, t_lo, s, vs, scale, eta, v, gamma, D, Dp, K, X)
+                    xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, K, X)
             if v_prev < 0.0 <= vs:
-                sm = _minimum(s_prev, v_prev, s, x, u, gamma, K, X)
-                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, u, gamma, K, X)
+                sm = _minimum(s_prev, s, x, xl, u, ul, gamma, K, X)
+                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, K, X)
                 if xm <= 4.0 * EPS * sc_m:
-                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, v, gamma, Dm, Dpm, K, X)
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, K, X)
             if at_end:
                 break
         if last:
-            return HORIZON, t_limit, vs, xs, eta + v * h + D, v + Dp, 0.0, 0.0
-        x, u, eta, v = xs, vs, eta + v * h + D, v + Dp
+            return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
+        u, ul = compensated_add(u, ul, -gamma * h - Dp)
+        eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
+        v, vl = compensated_add(v, vl, Dp)
         t_hi, t_lo = compensated_add(t_hi, t_lo, h)
-    return FAILED, t_hi + t_lo, u, x, eta, v, 0.0, 0.0
+    return FAILED, t_hi + t_lo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
 @njit(cache=True)
-def _contact(t_hi, t_lo, s, vs, scale, eta, v, gamma, D, Dp, K, X):
-    """FOUND record at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
+def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, K, X):
+    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
     D2, D3 = curvature(s, K, X)
     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
-    return FOUND, t_hi + t_lo, vs, scale, eta + v * s + D, v + Dp, -gamma - D2, -D3
+    return FOUND, t_hi + t_lo, vs, scale, eta + ((v * s + D) + (el + vl * s)), (v + Dp) + vl, -gamma - D2, -D3
 
 
 @njit(cache=True)
@@ -329,7 +349,7 @@ def short_flight(u, v, eta, law, X, P, Q):
         for _ in range(4):
             if not 0.0 < t <= T:
                 break
-            xs, vs, scale, D, Dp = _evaluate(t, 0.0, u, gamma, K, X)
+            xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, K, X)
             if not vs < 0.0:
                 break
             dt = -xs / vs
@@ -348,7 +368,7 @@ def short_flight(u, v, eta, law, X, P, Q):
     if s > T:
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     for _ in range(64):
-        xs, vs, scale, D, Dp = _evaluate(s, 0.0, u, gamma, K, X)
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, K, X)
         if xs <= 4.0 * EPS * scale:
             break
         s_new = s + safe_step(xs, vs, B)
@@ -361,5 +381,5 @@ def short_flight(u, v, eta, law, X, P, Q):
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if vs < 0.0:
         s -= xs / vs
-        xs, vs, scale, D, Dp = _evaluate(s, 0.0, u, gamma, K, X)
-    return _contact(0.0, 0.0, s, vs, scale, eta, v, gamma, D, Dp, K, X)
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, K, X)

@@ -48,7 +48,7 @@ from numba import njit
 #: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|).
 DISC = 0.8
 #: highest degree of a general (long-flight) step.
-DEGREE_LONG = 24
+DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
 DEGREE_SHORT = 12
 #: relative margin on computed bounds (covers their own rounding).
