@@ -126,14 +126,14 @@ def crossing_halfwidth(v, Es, law):
 
 
 @njit(cache=True)
-def _evaluate(s, x, xl, u, ul, gamma, K, X):
+def _evaluate(s, x, xl, u, ul, gamma, H, K, X):
     """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s).
 
     (x + xl, u + ul) is the step's start state carried with its compensation terms
     (Neumaier sums over the steps of a long flight): the increment is added to x
     first, where near a root it cancels exactly, then the small terms.
     """
-    D, Dp = displacement(s, K, X)
+    D, Dp = displacement(s, H, K, X)
     xs = (x + (u * s - 0.5 * gamma * s * s - D)) + (xl + ul * s)
     vs = (u + (-gamma * s - Dp)) + ul
     scale = x + abs(u) * s + 0.5 * gamma * s * s + abs(D)
@@ -141,19 +141,19 @@ def _evaluate(s, x, xl, u, ul, gamma, K, X):
 
 
 @njit(cache=True)
-def _minimum(s0, s1, x, xl, u, ul, gamma, K, X):
+def _minimum(s0, s1, x, xl, u, ul, gamma, H, K, X):
     """Time of the minimum of x between s0 (x' < 0) and s1 (x' >= 0): Newton on x' kept in the bracket."""
     lo, hi = s0, s1
     s = 0.5 * (s0 + s1)
     for _ in range(60):
         if not lo < s < hi:
             s = 0.5 * (lo + hi)
-        _, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, K, X)
+        _, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, H, K, X)
         if vs < 0.0:
             lo = s
         else:
             hi = s
-        A = -gamma - curvature(s, K, X)[0]
+        A = -gamma - curvature(s, H, K, X)[0]
         step = -vs / A if A > 0.0 else 0.0
         if step == 0.0 or abs(step) <= 4.0 * EPS * s or hi - lo <= 4.0 * EPS * hi:
             break
@@ -171,9 +171,9 @@ def _liftoff(acc, h, radius, Rz, Rp, K, X):
     for _ in range(400):
         poly = 0.0
         for k in range(K, 2, -1):
-            poly = poly * S + abs(X[k])
+            poly = poly * (S / radius) + abs(X[k])
         tail = tail_bounds(S / radius, K, Rz, Rp)[0]
-        if 0.5 * acc > poly * S + tail / (S * S):
+        if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
             return S
         S *= 0.5
     return 0.0
@@ -248,17 +248,17 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
         last = t + h >= t_limit
         if last:
             h = t_limit - t
-        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, K, X, P, Q)
+        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, radius, K, X, P, Q)
         s = 0.0
         xs, vs = x + xl, u + ul
         if x == 0.0 and u == 0.0:
-            acc = -gamma - 2.0 * X[2]
+            acc = -gamma - 2.0 * X[2] / (radius * radius)
             if not acc > 0.0:
-                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3]
+                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3] / radius**3
             s = _liftoff(acc, h, radius, Rz, Rp, K, X)
             if s == 0.0:
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-            xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, K, X)
+            xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
         D, Dp = 0.0, 0.0
         while evals < MAX_EVALS:
             evals += 1
@@ -268,17 +268,17 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 s_new = h
             s_prev, v_prev = s, vs
             s = s_new
-            xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, K, X)
+            xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
             if xs <= 4.0 * EPS * scale:
                 if vs < 0.0:  # Newton polish, re-evaluated at the polished time
                     s = s - xs / vs
-                    xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, K, X)
-                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, K, X)
+                    xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X)
             if v_prev < 0.0 <= vs:
-                sm = _minimum(s_prev, s, x, xl, u, ul, gamma, K, X)
-                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, K, X)
+                sm = _minimum(s_prev, s, x, xl, u, ul, gamma, radius, K, X)
+                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, radius, K, X)
                 if xm <= 4.0 * EPS * sc_m:
-                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, K, X)
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X)
             if at_end:
                 break
         if last:
@@ -292,9 +292,9 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
 
 
 @njit(cache=True)
-def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, K, X):
+def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X):
     """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
-    D2, D3 = curvature(s, K, X)
+    D2, D3 = curvature(s, H, K, X)
     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
     return FOUND, t_hi + t_lo, vs, scale, eta + ((v * s + D) + (el + vl * s)), (v + Dp) + vl, -gamma - D2, -D3
 
@@ -340,7 +340,7 @@ def short_flight(u, v, eta, law, X, P, Q):
         K += 1
         if K > DEGREE_SHORT:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, K, X, P, Q)
+    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, 1.0, K, X, P, Q)
     B = curvature_bound(spring_energy(w0, v, p0, law), law)
     A0 = -gamma - 2.0 * X[2]
     disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
@@ -349,14 +349,14 @@ def short_flight(u, v, eta, law, X, P, Q):
         for _ in range(4):
             if not 0.0 < t <= T:
                 break
-            xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, K, X)
+            xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
             if not vs < 0.0:
                 break
             dt = -xs / vs
             if B * dt * dt <= 8.0 * EPS * scale:
                 if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
                     # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
-                    D2, D3 = curvature(t, K, X)
+                    D2, D3 = curvature(t, 1.0, K, X)
                     D += Dp * dt
                     Dp += D2 * dt
                     t += dt
@@ -368,7 +368,7 @@ def short_flight(u, v, eta, law, X, P, Q):
     if s > T:
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     for _ in range(64):
-        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, K, X)
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
         if xs <= 4.0 * EPS * scale:
             break
         s_new = s + safe_step(xs, vs, B)
@@ -381,5 +381,5 @@ def short_flight(u, v, eta, law, X, P, Q):
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if vs < 0.0:
         s -= xs / vs
-        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, K, X)
-    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, K, X)
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X)

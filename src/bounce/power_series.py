@@ -84,8 +84,11 @@ def powers_at(w0, law):
 
 
 @njit(cache=True)
-def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, K, X, P, Q):
-    """Fill X[0..K] with xi^(k)(t0)/k! for eq. (S) from xi(t0) = xi0, xi'(t0) = v0.
+def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
+    """Fill X[0..K] with H^k xi^(k)(t0)/k! for eq. (S) from xi(t0) = xi0, xi'(t0) = v0.
+
+    H is the time unit of the coefficients (H = r_c keeps |X_k| <= Rz: no overflow
+    when the series is taken close to xi = 0, where r_c ~ |xi0| / |v0| is tiny).
 
     w0 = |xi0| > 0 unless the law is linear; p0, q0 from :func:`powers_at`; P, Q are
     work arrays (length > K) for the coefficients of |xi|^(a+1) and |xi|^b.
@@ -96,7 +99,8 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, K, X, P, Q):
     lin_b = law[L_ANALYTIC_B] == 1.0
     sigma = 1.0 if xi0 >= 0.0 else -1.0
     X[0] = xi0
-    X[1] = v0
+    X[1] = v0 * H
+    H2 = H * H
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
     for k in range(0, K - 1):
@@ -121,9 +125,9 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, K, X, P, Q):
             damp = 0.0
             for j in range(0, k + 1):
                 damp += (j + 1) * X[j + 1] * Q[k - j]
-        rhs = -(r * P[k] + 2.0 * m * damp)
+        rhs = -(H2 * r * P[k] + 2.0 * m * H * damp)
         if k == 0:
-            rhs -= c0
+            rhs -= H2 * c0
         X[k + 2] = rhs / ((k + 1) * (k + 2))
 
 
@@ -162,23 +166,25 @@ def tail_bounds(theta, K, Rz, Rp):
 
 
 @njit(cache=True)
-def displacement(s, K, X):
-    """(D, D') at s for D(s) = sum_{k=2..K} X_k s^k, so that xi(s) = X0 + X1 s + D(s)."""
+def displacement(s, H, K, X):
+    """(D, D') at s for D(s) = sum_{k=2..K} X_k (s/H)^k, so that xi(s) = X0 + X1 s/H + D(s)."""
+    z = s / H
     d0 = X[K]
     d1 = K * X[K]
     for k in range(K - 1, 1, -1):
-        d0 = d0 * s + X[k]
-        d1 = d1 * s + k * X[k]
-    return d0 * s * s, d1 * s
+        d0 = d0 * z + X[k]
+        d1 = d1 * z + k * X[k]
+    return d0 * z * z, d1 * z / H
 
 
 @njit(cache=True)
-def curvature(s, K, X):
+def curvature(s, H, K, X):
     """(D'', D''') at s: xi'' and xi''' of the truncated series (K >= 3)."""
+    z = s / H
     d2 = K * (K - 1) * X[K]
     d3 = K * (K - 1) * (K - 2) * X[K]
     for k in range(K - 1, 1, -1):
-        d2 = d2 * s + k * (k - 1) * X[k]
+        d2 = d2 * z + k * (k - 1) * X[k]
     for k in range(K - 1, 2, -1):
-        d3 = d3 * s + k * (k - 1) * (k - 2) * X[k]
-    return d2, d3
+        d3 = d3 * z + k * (k - 1) * (k - 2) * X[k]
+    return d2 / (H * H), d3 / (H * H * H)
