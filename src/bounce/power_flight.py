@@ -36,15 +36,21 @@ tangential contact.  At the root (|x| <= 4 eps scale) one Newton step polishes i
 
 The non-analytic point xi = 0 (a, b not both 0).  The series around xi0 has
 radius <= |xi0| / |xi'|-ish, so steps shrink geometrically towards xi = 0; once
-|xi| <= delta with
+|xi| <= delta/2 with
 
     delta = min( (2^-57 v^2 / (rho 1.01^(a+1)))^(1/(a+2)),  (2^-58 v^2 / (mu V 1.01^b))^(1/(b+1)) ),
 
-the crossing is one *window*: xi moves at constant speed v to the point
-sign(v) delta on the other side in T <= 2 delta/|v|.  There |xi''| <= F =
+the crossing is one *window*: from |xi| <= delta/2, xi moves at constant speed v
+to the point sign(v) delta (on the other side, or on the same side when moving
+away from 0) in T <= 2 delta/|v|, and the series takes over again there.  There |xi''| <= F =
 rho (1.01 delta)^(a+1) + 2 mu V (1.01 delta)^b, so the neglected change of xi' is
 <= F T <= 2^-55 |v| and that of xi (and of x) <= F T^2/2 <= 2^-56 |v| T: the window
-is exact to rounding.  The floor is checked over the window with the safe step
+is exact to rounding.  For b = 0 the damping is linear and solved exactly in the
+window (xi' = v exp(-2 mu s)); only the restoring force is neglected, and the
+second term of delta is dropped.  Approximation: delta is never below 16 ulps of
+xi_eq, the resolution of xi in the deviation variable eta; where that floor is
+active (|v| below ~1e-8 for Hertz) the neglected change F T exceeds 2^-55 |v|,
+but stays below the rounding of the state itself (F T <= F 2 delta/|v|, delta ~1e-15).  The floor is checked over the window with the safe step
 (an impact inside a 1e-11-wide crossing window is reported as FAILED, not guessed).
 
 Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
@@ -117,12 +123,13 @@ def crossing_halfwidth(v, Es, law):
     if v == 0.0:
         return 0.0
     v2 = v * v
-    d1 = (2.0**-57 * v2 / (law[L_RHO] * 1.01 ** law[L_AP1])) ** (1.0 / (law[L_AP1] + 1.0))
+    delta = (2.0**-57 * v2 / (law[L_RHO] * 1.01 ** law[L_AP1])) ** (1.0 / (law[L_AP1] + 1.0))
     mu = law[L_MU]
-    if mu == 0.0:
-        return d1
-    d2 = (2.0**-58 * v2 / (mu * math.sqrt(2.0 * Es) * MARGIN * 1.01 ** law[L_B])) ** (1.0 / (law[L_B] + 1.0))
-    return min(d1, d2)
+    if mu > 0.0 and law[L_ANALYTIC_B] == 0.0:
+        damp = (2.0**-58 * v2 / (mu * math.sqrt(2.0 * Es) * MARGIN * 1.01 ** law[L_B])) ** (1.0 / (law[L_B] + 1.0))
+        delta = min(delta, damp)
+    # eta = xi - xi_eq resolves xi only to ~ulp(xi_eq): no window narrower than that
+    return max(delta, 16.0 * EPS * abs(law[L_XI_EQ]))
 
 
 @njit(cache=True)
@@ -219,16 +226,28 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
-        if singular and w0 <= crossing_halfwidth(v, Es, law):
-            delta = crossing_halfwidth(v, Es, law)
-            T = ((delta if v > 0.0 else -delta) - xi0) / v
+        delta = crossing_halfwidth(v, Es, law) if singular else 0.0
+        if w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
+            d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
+            if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
+                # linear damping solved exactly in the window: xi' = v exp(-2 mu s)
+                arg = 2.0 * mu * d / v
+                if not arg < 0.5:
+                    return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+                T = -math.log1p(-arg) / (2.0 * mu)
+                dv = v * math.expm1(-2.0 * mu * T)
+            else:
+                T = d / v
+                dv = 0.0
             if not (x == 0.0 and u == 0.0) and safe_step(x + xl, u + ul, B) <= T:
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             if t + T > t_limit:
                 return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-            x, xl = compensated_add(x, xl, u * T - 0.5 * gamma * T * T + ul * T)
-            u, ul = compensated_add(u, ul, -gamma * T)
-            eta, el = compensated_add(eta, el, v * T + vl * T)
+            # x = psi - xi: psi moves by (u + v) T - gamma T^2/2, xi by d
+            x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
+            u, ul = compensated_add(u, ul, -gamma * T - dv)
+            eta, el = compensated_add(eta, el, d + vl * T)
+            v, vl = compensated_add(v, vl, dv)
             t_hi, t_lo = compensated_add(t_hi, t_lo, T)
             evals += 1
             continue
