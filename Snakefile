@@ -11,9 +11,12 @@ methods (speed against accuracy).
 
 import json
 import re
+import sys
 from pathlib import Path
 
-from snakemake.utils import min_version, validate
+from snakemake.utils import min_version
+
+from bounce.config import ConfigError, load_schema, validated
 
 min_version("8.0")
 
@@ -24,7 +27,18 @@ configfile: Path(workflow.basedir) / "config" / "config.yaml"
 report: "workflow/report/workflow.rst"
 
 
-validate(config, Path(workflow.basedir) / "config" / "schema.yaml")
+# The config contract (bounce.config): unknown keys, NaN/inf, out-of-range values, unphysical scenes and
+# dangling references stop the run here, before any job starts, with one line naming the key.
+try:
+    _checked = validated(config, load_schema(Path(workflow.basedir) / "config" / "schema.yaml"))
+except ConfigError as _err:
+    sys.exit(f"config error: {_err}")
+config.clear()
+config.update(_checked)
+
+# Where results/, logs and .snakemake/ go: "." for the full pipeline, its own folder for the CI-sized
+# config, so that a CI-sized run never overwrites the full results.
+workdir: config["workdir"]
 
 
 include: "workflow/rules/common.smk"

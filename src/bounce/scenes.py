@@ -21,10 +21,12 @@ import numpy as np
 
 from .model import Deviations, InputError, Parameters, State
 from .simulate import Trajectory, simulate
+from .springs import spring_from_spec
 
 
 def scene_parameters(spec: dict) -> Parameters:
-    return Parameters(gamma=spec["gamma"], mu=spec["mu"])
+    """gamma, mu and the spring law (``spring: {law: power, rho: .., a: .., b: ..}``, linear when absent)."""
+    return Parameters(gamma=spec["gamma"], mu=spec["mu"], spring=spring_from_spec(spec.get("spring")))
 
 
 def scene_initial(spec: dict, params: Parameters) -> State | Deviations:
@@ -34,8 +36,8 @@ def scene_initial(spec: dict, params: Parameters) -> State | Deviations:
         return State.sticky_ic(params, eps=init["sticky"]["eps"], ydot0=init["sticky"].get("ydot", -0.1))
     if "psi" in init:
         psi, psidot, xi, xidot = (float(init[k]) for k in ("psi", "psidot", "xi", "xidot"))
-        # deviations directly: eta = xi + gamma, no detour through y ~ 1
-        return Deviations(x=psi - xi, xdot=psidot - xidot, xidot=xidot, eta=xi + params.gamma)
+        # deviations directly: eta = xi - xi_eq (xi + gamma, linear spring), no detour through y ~ 1
+        return Deviations(x=psi - xi, xdot=psidot - xidot, xidot=xidot, eta=xi - params.xi_eq)
     return State(x=init["x"], xdot=init["xdot"], y=init["y"], ydot=init["ydot"])
 
 

@@ -36,7 +36,7 @@ def _sticky_convergence(args) -> None:
 def _figure(args) -> None:
     from .figures import FIGURES
 
-    FIGURES[args.name]([read_dataset(p) for p in args.inputs], args.spec, args.out)
+    FIGURES[args.name].draw([read_dataset(p) for p in args.inputs], args.spec, args.out)
 
 
 def _check(args) -> None:
@@ -58,29 +58,17 @@ def _report(args) -> None:
 
     figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
     meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
-    write(args.inputs, figures, args.out[0], args.out[1], args.spec.get("groups", {}), meta)
-
-
-#: speed-vs-accuracy studies: name -> (module, dataset builder, plot function)
-STUDIES = {
-    "horizon": ("bounce.methods.horizon", "horizon_dataset", "plot_horizon"),
-    "contact-switch": ("bounce.methods.contact_switch", "switch_study", "plot_switch_study"),
-    "reduced-vs-dimer": ("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer"),
-    "least-model": ("bounce.methods.reduced_compare", "least_model", "plot_least_model"),
-    "work-precision": ("bounce.methods.compare", "work_precision", "plot_work_precision"),
-    "stability-map": ("bounce.methods.compare", "stability_map", "plot_stability_map"),
-}
+    write(args.inputs, figures, args.out[0], args.out[1], args.spec["subjects"], meta)
 
 
 def _study(args) -> None:
-    """One study of bounce.methods: its dataset and its figure."""
-    import importlib
+    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset and its figure."""
+    from .studies import STUDIES
 
-    module, build, plot = STUDIES[args.name]
-    module = importlib.import_module(module)
-    ds = getattr(module, build)(args.spec)
+    build, plot = STUDIES[args.name].functions()
+    ds = build(args.spec)
     write_netcdf(ds, args.out[0])
-    getattr(module, plot)(ds, args.spec, args.out[1:])
+    plot(ds, args.spec, args.out[1:])
 
 
 def _thumbnails(args) -> None:

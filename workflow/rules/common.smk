@@ -1,4 +1,9 @@
-"""Shared helpers: config slices as JSON, the sticky runs and the figure table."""
+"""Shared helpers: config slices as JSON, the sticky runs, and the registries of the package
+(figures: bounce.figures.FIGURES; studies: bounce.studies.STUDIES; checks: bounce.checks) read here,
+so that no name is listed twice."""
+
+from bounce.figures import figure_table, sticky_dataset
+from bounce.studies import study_slices
 
 
 def as_json(obj):
@@ -6,13 +11,8 @@ def as_json(obj):
     return json.dumps(obj, sort_keys=True, separators=(",", ":"))
 
 
-def eps_tag(eps):
-    """File-name tag of an eps of eq. sticky-ic: 0, 0.001, 1e-06, ..."""
-    return f"{float(eps):g}"
-
-
 def sticky_file(eps):
-    return f"results/data/sticky/eps{eps_tag(eps)}.nc"
+    return f"results/data/{sticky_dataset(eps)}.nc"
 
 
 def sticky_run_spec(w):
@@ -26,38 +26,16 @@ def sticky_run_spec(w):
 
 SCENES = sorted(config["scenes"])
 STICKY = config["sticky"]
-STICKY_TRAJ = [sticky_file(e) for e in STICKY["eps_traj"]]
 STICKY_CONV = [sticky_file(0.0)] + [sticky_file(e) for e in STICKY["eps_convergence"] if float(e) != 0.0]
 
-# figure name -> (input datasets, spec); names are the paper's figure labels
-FIGURES = {}
-for _name, _spec in config["figures"].items():
-    _inputs = [f"results/data/{_spec['scene']}.nc"]
-    FIGURES[_name] = (_inputs, dict(_spec, label=_name))
-    if _name.startswith("very_rigid_poincare"):
-        FIGURES[f"{_name}_magni"] = (_inputs, dict(_spec, label=f"{_name}_magni"))
-FIGURES["sticky-traj"] = (STICKY_TRAJ, {"t_end": STICKY["t_max"]})
-FIGURES["sticky-convergence"] = (["results/data/sticky-convergence.nc"], {})
-FIGURES["sticky-inference"] = (["results/data/sticky-inference.nc"], {})
-FIGURES["energy-decay"] = (["results/data/asymptotic-underdamped.nc", "results/data/asymptotic-overdamped.nc"], {})
-FIGURES["asymptotic-laws"] = (["results/data/asymptotic-underdamped.nc", "results/data/asymptotic-overdamped.nc"], {})
+# figure name -> (input datasets, spec): the registry bounce.figures.FIGURES, one line per figure
+FIGURES = figure_table(config)
 
 
 CHECKS = sorted(config.get("checks", {}))
 
-# speed-vs-accuracy studies: name -> config slice
-REDUCED = config["reduced"]
-STUDIES = {
-    "horizon": REDUCED["horizon"],
-    "contact-switch": REDUCED["switch"],
-    "reduced-vs-dimer": REDUCED["vs_dimer"],
-    "least-model": dict(
-        REDUCED["least_model"],
-        scene_specs={k: config["scenes"][k] for k in REDUCED["least_model"]["scenes"]},
-    ),
-    "work-precision": config["methods"],
-    "stability-map": config["methods"],
-}
+# speed-vs-accuracy studies: name -> config slice (the registry bounce.studies.STUDIES)
+STUDIES = study_slices(config)
 
 
 def figure_files():

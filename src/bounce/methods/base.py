@@ -14,6 +14,8 @@ contract:
    (one of FAILURES) with the index of the impact where it happened.
 4. ``cpu_time`` is the process time of the run itself (no JIT compile: warm up
    before timing).
+5. ``laws`` names the spring laws (:mod:`bounce.springs`) it can simulate; the
+   study drivers never hand it a ``params.spring`` outside them.
 """
 
 from __future__ import annotations
@@ -59,3 +61,8 @@ class MethodSpec:
     name: str
     run: Callable[..., MethodResult]
     settings_doc: str = ""
+    laws: tuple[str, ...] = ("linear",)
+
+    def supports(self, params) -> bool:
+        """Can this method simulate ``params.spring``?"""
+        return params.spring.name in self.laws

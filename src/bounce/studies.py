@@ -1,0 +1,50 @@
+"""The speed-against-accuracy studies of :mod:`bounce.methods`: the registry, one line per study.
+
+A study is ``build(spec) -> xr.Dataset`` plus ``plot(ds, spec, outputs)`` in one module of
+``bounce.methods``, and the slice of the validated config it takes.  The Snakefile
+(``workflow/rules/common.smk``) and the rule entry point (:mod:`bounce.tasks`) both read this table.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import Callable
+
+
+@dataclass(frozen=True)
+class Study:
+    """``module.build(spec)`` makes the dataset, ``module.plot(ds, spec, outputs)`` its figure."""
+
+    module: str
+    build: str
+    plot: str
+    config: Callable[[dict], dict]
+
+    def functions(self) -> tuple[Callable, Callable]:
+        module = importlib.import_module(self.module)
+        return getattr(module, self.build), getattr(module, self.plot)
+
+
+def _least_model_slice(config: dict) -> dict:
+    """The least-model settings plus the specs of the scenes it names (validated to exist)."""
+    lm = config["reduced"]["least_model"]
+    return dict(lm, scene_specs={name: config["scenes"][name] for name in lm["scenes"]})
+
+
+#: study name -> Study (one line per study)
+STUDIES = {
+    "horizon": Study("bounce.methods.horizon", "horizon_dataset", "plot_horizon", lambda c: c["reduced"]["horizon"]),
+    "contact-switch": Study("bounce.methods.contact_switch", "switch_study", "plot_switch_study",
+                            lambda c: c["reduced"]["switch"]),
+    "reduced-vs-dimer": Study("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer",
+                              lambda c: c["reduced"]["vs_dimer"]),
+    "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice),
+    "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision", lambda c: c["methods"]),
+    "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map", lambda c: c["methods"]),
+}
+
+
+def study_slices(config: dict) -> dict:
+    """name -> the config slice of each study (what its rule receives)."""
+    return {name: study.config(config) for name, study in STUDIES.items()}

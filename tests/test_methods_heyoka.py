@@ -1,0 +1,148 @@
+"""The heyoka peer (bounce.methods.heyoka_taylor) against bounce's exact solver and the mpmath references.
+
+* linear law, the paper's drop (gamma = mu = 0.01, psi(0) = 6): impact times agree with the exact
+  solver to 1e-12 while the chaotic transient leaves them that close (13 impacts; heyoka's ~1e-15
+  one-step errors grow ~10x per impact there), and flight by flight from the exact post-impact
+  states for the first 15 impacts (tau, x' and xi' after the impact to 1e-12);
+* linear law deep in the asymptotic regime (state after 1e5 impacts): 15 flights to 1e-12;
+* Hertz (a = b = 1/2): the first impact from a moderate and from a deep state agrees with the
+  independent mpmath reference (tests/power_reference.py) to 1e-12;
+* failures are reported, not raised: the paper's drop has the spring exactly at rest length, where
+  the Taylor coefficients of |xi|^(1/2) are not finite (stall at impact 0); a cooldown longer than
+  the flights skips impacts (missed_impact);
+* bad settings get one line naming the setting.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+from mpmath import mp, mpf
+
+import power_reference as PR
+from bounce import Deviations, Parameters, State, simulate
+from bounce.methods import registry
+from bounce.methods import heyoka_taylor as HT
+from bounce.springs import SPRING_LAWS, SpringLaw
+
+pytest.importorskip("heyoka")
+
+GAMMA = MU = 0.01
+DROP = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class _PowerStandIn(SpringLaw):
+    """The power law for Parameters until bounce.springs registers its own (same contract)."""
+
+    name = "power"
+    rho: float = 1.0
+    a: float = 0.5
+    b: float = 0.5
+
+    def xi_eq(self, gamma):
+        return HT.xi_equilibrium(gamma, self.rho, self.a)
+
+    def restoring(self, xi):
+        return self.rho * xi * abs(xi) ** self.a
+
+    def damping_factor(self, xi):
+        return abs(xi) ** self.b
+
+    def potential(self, xi):
+        return self.rho * abs(xi) ** (self.a + 2) / (self.a + 2)
+
+
+def power_law(rho, a, b):
+    law = SPRING_LAWS.get("power")
+    return law(rho=rho, a=a, b=b) if law is not None else _PowerStandIn(rho, a, b)
+
+
+HERTZ = Parameters(GAMMA, MU, power_law(1.0, 0.5, 0.5))
+
+
+def run(params, initial, setting=None, **kw):
+    return registry()["heyoka"].run(params, initial, setting, **kw)
+
+
+def rel(a, b):
+    return np.abs((np.asarray(a, float) - np.asarray(b, float)) / np.asarray(b, float))
+
+
+def test_registered_for_both_laws():
+    spec = registry()["heyoka"]
+    assert spec is HT.METHOD
+    assert set(spec.laws) == {"linear", "power"}
+    assert spec.supports(HERTZ) and spec.supports(Parameters(GAMMA, MU))
+
+
+def test_linear_drop_matches_exact_solver():
+    p = Parameters(GAMMA, MU)
+    exact = simulate(p, DROP, max_events=16)
+    res = run(p, DROP, max_events=16)
+    assert res.failure == "" and len(res.t) == 16
+    assert rel(res.t[:13], exact.t[:13]).max() < 1e-12
+    # flight by flight from the exact post-impact states: no chaotic amplification
+    starts = [DROP] + [Deviations(0.0, exact.xdot[k], exact.xidot[k], exact.eta[k]) for k in range(14)]
+    for k, start in enumerate(starts):
+        one = run(p, start, max_events=1)
+        assert one.failure == ""
+        assert rel(one.t[0], exact.tau[k]) < 1e-12, k
+        assert rel(one.xdot[0], exact.xdot[k]) < 1e-12, k
+        assert rel(one.extra["xidot"][0], exact.xidot[k]) < 1e-12, k
+
+
+def test_linear_deep_asymptotic_flights_match_exact_solver():
+    p = Parameters(GAMMA, MU)
+    tr = simulate(p, DROP, max_events=100_015)
+    k0 = 100_000
+    start = Deviations(0.0, tr.xdot[k0 - 1], tr.xidot[k0 - 1], tr.eta[k0 - 1])
+    res = run(p, start, max_events=15)
+    assert res.failure == ""
+    assert tr.tau[k0] < 1e-2  # deep: flights ~3/(mu n)
+    assert rel(np.diff(res.t, prepend=0.0), tr.tau[k0:k0 + 15]).max() < 1e-12
+    assert rel(res.xdot, tr.xdot[k0:k0 + 15]).max() < 1e-12
+
+
+@pytest.mark.parametrize("kind", ["moderate", "deep"])
+def test_hertz_first_impact_matches_mpmath_reference(kind):
+    xi_eq = HERTZ.xi_eq
+    if kind == "moderate":  # swings through xi = 0 (the non-analytic point) before the impact
+        x, xdot, xidot, eta = 0.0, 0.12, -0.06, -0.04 - xi_eq
+    else:  # 1e-13 from the static equilibrium, flight ~1e-6
+        x, xdot, xidot, eta = 0.0, 1e-8, 2e-9, 1e-13
+    res = run(HERTZ, Deviations(x, xdot, xidot, eta), max_events=1)
+    assert res.failure == ""
+    with mp.workdps(60):
+        xi = mpf(xi_eq) + mpf(eta)  # exactly the xi heyoka starts from
+    ref = PR.reference_first_impact(GAMMA, MU, 1.0, 0.5, 0.5, x, xdot, xidot, xi)
+    assert rel(res.t[0], float(ref["tau"])) < 1e-12
+    assert rel(res.xdot[0], float(ref["xdot"])) < 1e-12
+    assert rel(res.extra["xidot"][0], float(ref["xidot"])) < 1e-12
+    eta_ref = float(ref["xi"] - mpf(xi_eq))
+    assert abs(res.extra["eta"][0] - eta_ref) < 1e-12 * max(abs(eta_ref), 1e-6 * abs(xi_eq))
+
+
+def test_spring_at_rest_length_is_reported_as_stall():
+    res = run(HERTZ, DROP, max_events=5)
+    assert res.failure == "stall" and res.failure_index == 0
+    assert "err_nf_state" in res.extra["reason"]
+
+
+def test_cooldown_longer_than_the_flights_is_a_missed_impact():
+    deep = Deviations(0.0, 1e-8, 2e-9, 1e-13)  # flights ~1e-6
+    ok = run(HERTZ, deep, max_events=20)
+    assert ok.failure == "" and len(ok.t) == 20
+    res = run(HERTZ, deep, {"cooldown": 1e-5}, max_events=20)
+    assert res.failure == "missed_impact" and res.failure_index == 0  # the start is a restart: cooldown armed
+    assert "skipped" in res.extra["reason"]
+
+
+@pytest.mark.parametrize("setting, word", [({"tol": 0.0}, "tol"), ({"cooldown": -1.0}, "cooldown"),
+                                           ({"rho": -1.0}, "rho"), ({"a": float("nan")}, "a"),
+                                           ({"tolerance": 1e-9}, "unknown")])
+def test_bad_settings_name_the_setting(setting, word):
+    with pytest.raises(ValueError, match=word):
+        run(Parameters(GAMMA, MU), DROP, setting, max_events=1)

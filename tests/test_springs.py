@@ -1,0 +1,71 @@
+"""The model layer (bounce.springs): a spring law is one module plus one registry line.
+
+Protects: the linear law's equilibrium and E_m against the paper's closed forms (eqs. equilibrium,
+Emin), the law's round trip through config specs and netCDF attributes, and the refusals (unknown
+law, unknown parameter, a law the exact solver does not support) as one-line InputErrors.
+"""
+
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from bounce import Parameters, State, simulate
+from bounce.errors import InputError
+from bounce.io import from_dataset, to_dataset
+from bounce.springs import LINEAR, SPRING_LAWS, SpringLaw, spring_from_attrs, spring_from_spec
+
+
+def test_default_law_is_linear():
+    assert Parameters(0.01, 0.01).spring is LINEAR
+    assert spring_from_spec(None) is LINEAR and spring_from_spec({}) is LINEAR
+
+
+@given(st.floats(1e-12, 0.49), st.floats(-10.0, 10.0))
+def test_linear_law_matches_the_paper(gamma, xi):
+    p = Parameters(gamma, 0.1)
+    assert p.xi_eq == -gamma  # eq. equilibrium
+    assert p.y_eq == 1.0 - 2.0 * gamma
+    assert p.energy_min == -0.5 * gamma**2  # eq. Emin
+    # E_m is the minimum of V(xi) + gamma xi (the energy at rest on the floor, psi = xi)
+    assert LINEAR.potential(xi) + gamma * xi >= p.energy_min - 1e-15 * max(1.0, xi * xi)
+    # V' = f (central difference of a quadratic is exact up to rounding)
+    h = 1e-3
+    assert math.isclose((LINEAR.potential(xi + h) - LINEAR.potential(xi - h)) / (2 * h), LINEAR.restoring(xi),
+                        rel_tol=1e-9, abs_tol=1e-9)
+
+
+def test_registry_names_match_classes():
+    for name, law in SPRING_LAWS.items():
+        assert issubclass(law, SpringLaw) and law.name == name
+
+
+def test_attrs_round_trip_through_netcdf():
+    p = Parameters(0.01, 0.01)
+    traj = simulate(p, State.from_psi_xi(1.0, 0.0, 0.0, 0.0), max_events=3)
+    ds = to_dataset(traj)
+    assert ds.attrs["spring_law"] == "linear"
+    assert spring_from_attrs(ds.attrs) == LINEAR
+    assert from_dataset(ds).params == p
+
+
+@pytest.mark.parametrize("spec, words", [
+    ({"law": "cubic"}, "spring law must be one of"),
+    ({"law": "linear", "rho": 2.0}, "takes the parameters"),
+])
+def test_bad_spec_is_one_line_naming_it(spec, words):
+    with pytest.raises(InputError, match=words) as err:
+        spring_from_spec(spec)
+    assert "\n" not in str(err.value)
+
+
+def test_exact_solver_refuses_other_laws():
+    class Cubic(SpringLaw):
+        name = "cubic"
+
+        def xi_eq(self, gamma):
+            return -gamma ** (1 / 3)
+
+    with pytest.raises(InputError, match="supports the spring laws"):
+        simulate(Parameters(0.01, 0.01, Cubic()), State.from_psi_xi(1.0, 0.0, 0.0, 0.0), max_events=3)
