@@ -163,7 +163,8 @@ def run_power_events(
 
 def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float = math.inf,
                    energy_stop: float = 0.0):
-    """Simulate the power-law spring ``spring`` (a :class:`bounce.springs.power.PowerSpring`).
+    """Simulate the power-law spring ``spring`` (a :class:`bounce.springs.power.PowerSpring`, or the
+    linear law as rho = 1, a = b = 0).
 
     ``initial``: a :class:`bounce.model.State`, or :class:`bounce.model.Deviations` whose
     eta is xi - xi_eq of this law.  Returns a :class:`bounce.simulate.Trajectory`
@@ -172,16 +173,17 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     cannot skip an impact (:mod:`bounce.power_flight`).
     """
     from .model import Deviations, InputError, State
-    from .simulate import Trajectory, _positive_int
+    from .simulate import MAX_EVENTS, Trajectory, _positive_int
 
-    max_events = _positive_int("events", max_events)
+    max_events = _positive_int("events", max_events, MAX_EVENTS)
     t_max = float(t_max)
     if math.isnan(t_max) or not t_max > 0.0:
         raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
     energy_stop = float(energy_stop)
     if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
-        raise InputError(f"energy_stop must be a finite number >= 0, got {energy_stop!r}")
-    law = law_array(spring.rho, spring.a, spring.b, params.mu, params.gamma)
+        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    rho, a, b = (1.0, 0.0, 0.0) if spring.name == "linear" else (spring.rho, spring.a, spring.b)
+    law = law_array(rho, a, b, params.mu, params.gamma)
     xi_eq = float(law[L_XI_EQ])
     if isinstance(initial, State):
         x, u, a = initial.x, initial.xdot, 0.5 * (initial.ydot - initial.xdot)

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
 
-from ..model import InputError
+from ..errors import InputError
+from .base import SpringLaw
 
 
 def _parameter(name: str, value, lower: float, strict: bool) -> float:
@@ -36,14 +36,14 @@ def _parameter(name: str, value, lower: float, strict: bool) -> float:
 
 
 @dataclass(frozen=True)
-class PowerSpring:
+class PowerSpring(SpringLaw):
     """f(xi) = rho xi |xi|^a, g(xi) = |xi|^b (eq. ``eq-motion-nonlin-psi-xi``)."""
+
+    name = "power"
 
     rho: float
     a: float
     b: float
-
-    name: ClassVar[str] = "power"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "rho", _parameter("rho", self.rho, 0.0, strict=True))
@@ -70,9 +70,3 @@ class PowerSpring:
         """E_m = V(xi_eq) + gamma xi_eq = -gamma |xi_eq| (a+1)/(a+2) (rest on the floor, x = 0)."""
         return -gamma * -self.xi_eq(gamma) * (self.a + 1.0) / (self.a + 2.0)
 
-    def parameters(self) -> dict:
-        return {"rho": self.rho, "a": self.a, "b": self.b}
-
-    def attrs(self) -> dict:
-        """netCDF global attributes naming the law and its parameters."""
-        return {"spring_law": self.name, "spring_rho": self.rho, "spring_a": self.a, "spring_b": self.b}
