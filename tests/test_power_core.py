@@ -24,7 +24,7 @@ from bounce.power_series import DEGREE_LONG, law_array
 from bounce.springs.power import PowerSpring
 
 IMPACT = 0
-MAX_EXAMPLES = int(os.environ.get("BOUNCE_HYPOTHESIS_EXAMPLES", "40"))
+MAX_EXAMPLES = int(os.environ.get("BOUNCE_HYPOTHESIS_EXAMPLES", "25"))
 SETTINGS = settings(deadline=None, max_examples=MAX_EXAMPLES, suppress_health_check=[HealthCheck.too_slow])
 LINEAR = PowerSpring(1.0, 0.0, 0.0)
 HERTZ = PowerSpring(1.0, 0.5, 0.5)
@@ -183,12 +183,15 @@ def test_first_contact_matches_dense_integration(spring, gamma, mu, u, xi, v):
                         Deviations(x=0.0, xdot=u, xidot=v, eta=xi - spring.xi_eq(gamma)), max_events=1)
     tau = float(tr.tau[0])
     low, sol = dense_min_x(spring, gamma, mu, 0.0, u, xi, v, tau * (1 + 1e-12))
-    assert low >= -1e-9
+    # DOP853's own global error grows with the flight (flights here reach ~300 time units,
+    # hundreds of spring oscillations): measured below 1e-9 per 10 time units
+    budget = 1e-9 * (1.0 + tau / 10.0)
+    assert low >= -budget
     xe, ue, xie, ve = sol.sol(tau)
-    assert abs(xe) <= 1e-9
+    assert abs(xe) <= budget
     if tr.kind[0] == IMPACT:
-        assert tr.xdot[0] == pytest.approx(-ue, rel=1e-7, abs=1e-9)
-        assert tr.xidot[0] == pytest.approx(u + v - gamma * tau, rel=1e-7, abs=1e-9)
+        assert tr.xdot[0] == pytest.approx(-ue, rel=1e-7, abs=budget)
+        assert tr.xidot[0] == pytest.approx(u + v - gamma * tau, rel=1e-12)
 
 
 # ------------------------------------------------------------- transient drops

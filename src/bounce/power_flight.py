@@ -13,7 +13,7 @@ length h from (x, u, v, eta) with the Taylor coefficients X_k of xi
 
 (x = psi - xi as a displacement from the step's start: nothing of size xi_eq is
 ever subtracted).  The degree and the step are chosen so that the rigorous tail
-bound of the series is below 2^-55 of the rounding scale of x (x + |u| s +
+bound of the series is below 2^-64 (hot path: 2^-55) of the rounding scale of x (x + |u| s +
 gamma s^2/2) and of x' (|u| + gamma s), and of xi (|xi0| + |v| s + |xi''(0)| s^2/2)
 and xi' (|v| + |xi''(0)| s) where those are smaller: the polynomial is then the
 flight to rounding (a tolerance relative to x alone would let a systematic
@@ -87,8 +87,12 @@ from .power_series import (
     taylor_coefficients,
 )
 
-#: 2^-55: truncation target relative to the rounding scale.
+#: truncation target of the hot path (one step per flight) relative to the rounding scale.
 TOL = 2.0**-55
+#: truncation target of a general step: a truncation error is systematic (the same sign from step
+#: to step), so over the ~1e4 steps of a long flight through many xi = 0 crossings 2^-55 per
+#: step would add up to ~1e-13; 2^-64 keeps the sum below 2^-50 of the scale.
+TOL_LONG = 2.0**-64
 #: cap on evaluations per flight (a crawl towards a tangency needs ~1e3).
 MAX_EVALS = 400_000
 #: status: the hot path hands over to the general stepper.
@@ -260,7 +264,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             # rounding scales of x, x' and of xi, xi' over the step: the tail stays below the smaller
             scale_x = min(x + abs(u) * h + 0.5 * gamma * h * h, w0 + abs(v) * h + 0.5 * xidd0 * h * h)
             scale_v = min(abs(u) + gamma * h, abs(v) + xidd0 * h)
-            if tx <= TOL * scale_x and tv <= TOL * scale_v:
+            if tx <= TOL_LONG * scale_x and tv <= TOL_LONG * scale_v:
                 break
             theta *= 0.7
         h = theta * radius
@@ -301,7 +305,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             if at_end:
                 break
         if last:
-            return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            return HORIZON, t_limit, (u + ul) + (-gamma * h - Dp), (x + xl) + (u * h - 0.5 * gamma * h * h - D), eta + ((v * h + D) + (el + vl * h)), (v + vl) + Dp, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
         u, ul = compensated_add(u, ul, -gamma * h - Dp)
         eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
