@@ -122,6 +122,24 @@ def curvature_bound(Es, law):
 
 
 @njit(cache=True)
+def _curvature_bound_near(w0, v, p0, q0, law):
+    """A bound B >= |x''| for the rest of the flight like :func:`curvature_bound`, without powers.
+
+    With E_s = v^2/2 + rho w0 p0/(a+2) and W^(a+2) = (a+2) E_s / rho = w0^(a+2) (1 + e),
+    e = (a+2) v^2 / (2 rho w0 p0): W <= w0 (1 + e/(a+2)) (concavity of the root, a + 2 >= 1),
+    rho W^(a+1) = (a+2) E_s / W <= (a+2) E_s / w0 and W^b <= q0 exp(b e/(a+2)) <= q0 / (1 - b e/(a+2))
+    when b e/(a+2) < 1 (else the general bound).
+    """
+    ap2 = law[L_AP1] + 1.0
+    Es = spring_energy(w0, v, p0, law) * MARGIN
+    r = v * v / (2.0 * law[L_RHO] * w0 * p0)  # e / (a + 2)
+    be = law[L_B] * r
+    if not be < 0.5:
+        return curvature_bound(Es, law)
+    return (law[L_GAMMA] + ap2 * Es / w0 + 2.0 * law[L_MU] * math.sqrt(2.0 * Es) * q0 / (1.0 - be)) * MARGIN
+
+
+@njit(cache=True)
 def crossing_halfwidth(v, Es, law):
     """delta of the window through xi = 0 (module docstring); 0 if v = 0."""
     if v == 0.0:
@@ -356,15 +374,14 @@ def short_flight(u, v, eta, law, X, P, Q):
     tol_x = TOL * u * T
     tol_v = TOL * u
     K = 3
-    while True:
-        tx, tv = tail_bounds(theta, K, Rz, Rp)
-        if tx <= tol_x and tv <= tol_v:
-            break
+    tk = theta * theta * theta / (1.0 - theta) * MARGIN  # theta^K / (1 - theta), as in tail_bounds
+    while Rz * tk * theta > tol_x or Rp * tk > tol_v:
         K += 1
+        tk *= theta
         if K > DEGREE_SHORT:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, 1.0, K, X, P, Q)
-    B = curvature_bound(spring_energy(w0, v, p0, law), law)
+    B = _curvature_bound_near(w0, v, p0, q0, law)
     A0 = -gamma - 2.0 * X[2]
     disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
     if A0 < 0.0 and disc > 0.0:

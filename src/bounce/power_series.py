@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 #: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|).
@@ -53,6 +54,9 @@ DEGREE_LONG = 32
 DEGREE_SHORT = 12
 #: relative margin on computed bounds (covers their own rounding).
 MARGIN = 1.0 + 1e-12
+
+#: 1/k (INV[0] unused)
+INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
 
 # layout of the law array (see law_array)
 L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B = range(10)
@@ -66,8 +70,6 @@ def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
     ``nonlin-equilibrium-xi``), the factors (1 + DISC)^(a+1), (1 + DISC)^b of the
     majorant, and whether the restoring (a = 0) and damping (b = 0) terms are analytic.
     """
-    import numpy as np
-
     xi_eq = -((gamma / rho) ** (1.0 / (a + 1.0)))
     return np.array([
         rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
@@ -77,7 +79,12 @@ def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
 
 @njit(cache=True)
 def powers_at(w0, law):
-    """(|xi0|^(a+1), |xi0|^b) at |xi0| = w0 (exact for the analytic cases)."""
+    """(|xi0|^(a+1), |xi0|^b) at |xi0| = w0 (exact for the analytic cases; Hertz by one sqrt)."""
+    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
+        return w0, 1.0
+    if law[L_AP1] == 1.5 and law[L_B] == 0.5:  # Hertz: one square root
+        q0 = math.sqrt(w0)
+        return w0 * q0, q0
     p0 = w0 if law[L_ANALYTIC_A] == 1.0 else w0 ** law[L_AP1]
     q0 = 1.0 if law[L_ANALYTIC_B] == 1.0 else w0 ** law[L_B]
     return p0, q0
@@ -98,6 +105,7 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
     lin_a = law[L_ANALYTIC_A] == 1.0
     lin_b = law[L_ANALYTIC_B] == 1.0
     sigma = 1.0 if xi0 >= 0.0 else -1.0
+    inv_xi0 = 1.0 / xi0 if xi0 != 0.0 else 0.0  # used only when xi0 != 0 (singular laws)
     X[0] = xi0
     X[1] = v0 * H
     H2 = H * H
@@ -111,14 +119,14 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
                 s = 0.0
                 for j in range(1, k + 1):
                     s += (ap1 * j - (k - j)) * X[j] * P[k - j]
-                P[k] = s / (k * xi0)  # G_j = sigma X_j, G_0 = sigma xi0, P_k = sigma F_k
+                P[k] = s * inv_xi0 * INV[k]  # G_j = sigma X_j, G_0 = sigma xi0, P_k = sigma F_k
             if lin_b:
                 Q[k] = 0.0
             else:
                 s = 0.0
                 for j in range(1, k + 1):
                     s += (b * j - (k - j)) * X[j] * Q[k - j]
-                Q[k] = s / (k * xi0)
+                Q[k] = s * inv_xi0 * INV[k]
         if lin_b:
             damp = (k + 1) * X[k + 1] * q0
         else:
@@ -128,7 +136,7 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
         rhs = -(H2 * r * P[k] + 2.0 * m * H * damp)
         if k == 0:
             rhs -= H2 * c0
-        X[k + 2] = rhs / ((k + 1) * (k + 2))
+        X[k + 2] = rhs * INV[k + 1] * INV[k + 2]
 
 
 @njit(cache=True)
