@@ -7,15 +7,22 @@ xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), and at x = 0
 * **impact** (eq. ``collision-rule``, applied as the Discussion prescribes):
   psi' and xi' are exchanged: u -> -x'(tau), a -> psi'(tau^-) = u + a - gamma tau;
 * **grazing** (eq. ``swishes``): a tangential contact with x'' > 0, nothing exchanged;
-* **sticky_start** (eq. ``sticky-condition``): x = x' = x'' = 0.  The sticky phase of
-  the nonlinear spring is not integrated yet: the loop records the onset and stops
-  with stop reason ``sticky_unsupported`` (never a guessed continuation).  For
-  the record, its equation follows as in the linear case: with x = 0, psi = xi and
-  psi'' = -gamma - xi'' + x''-reaction; adding the two equations of
-  eq. ``eq-motion-nonlin-psi-xi`` with the floor reaction R on the lower mass gives
-  xi'' = -(gamma + f(xi) + 2 mu xi' |xi|^b)/2 and the floor force
-  F = f(xi) + 2 mu xi' |xi|^b - gamma (eq. ``force-on-the-floor``: F = x'' of the free
-  motion), f(xi) = rho xi |xi|^a; detachment at F = 0 with F' > 0 (eq. ``cond_di_distacco``).
+* **sticky_start** (eq. ``sticky-condition``): x = x' = x'' = 0, or a start at rest on
+  the floor with x'' <= 0.  The sticky phase of the nonlinear spring is not integrated
+  yet: the loop records the onset and stops with stop reason ``sticky_unsupported``
+  (never a guessed continuation).  Its equation, for the record: with the floor
+  reaction R >= 0 on the lower mass, x'' = -gamma + f(xi) + 2 mu xi' |xi|^b + R and
+  y'' = -gamma - f(xi) - 2 mu xi' |xi|^b (eq. ``eq-motion-nonlin-psi-xi`` written for
+  x = psi - xi, y = psi + xi + 1); x = 0 gives xi = (y - 1)/2 and
+
+      xi'' = -(gamma + f(xi) + 2 mu xi' |xi|^b) / 2,    f(xi) = rho xi |xi|^a,
+
+  with the floor force F = f(xi) + 2 mu xi' |xi|^b - gamma = -2 (gamma + xi'') (the x''
+  of the free motion; eq. ``force-on-the-floor`` for a = b = 0, rho = 1), R = -F >= 0.
+  Detachment is the first F = 0 with F' > 0 (eq. ``cond_di_distacco``).  The sticky
+  equation has the same equilibrium xi_eq (there F = -2 gamma) and the non-increasing
+  energy xi'^2/2 + (gamma xi + V(xi))/2 (rate -mu xi'^2 |xi|^b), which bounds F on the
+  rest of the phase and can prove it infinite as in :mod:`bounce.events`.
 
 Tangential contacts are classified by :func:`bounce.events._is_tangential` and
 :func:`bounce.events._is_sticky_onset` (the same rounding-level rule), with x''

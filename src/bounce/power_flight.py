@@ -249,7 +249,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         delta = crossing_halfwidth(v, Es, law) if singular else 0.0
-        if w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
+        if singular and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
             d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
             if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
                 # linear damping solved exactly in the window: xi' = v exp(-2 mu s)
