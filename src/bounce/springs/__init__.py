@@ -12,13 +12,15 @@ from __future__ import annotations
 from ..errors import InputError
 from .base import SpringLaw
 from .linear import LINEAR, LinearSpring
+from .power import PowerSpring
 
 #: law name -> class (the registry: one line per law)
 SPRING_LAWS: dict[str, type[SpringLaw]] = {
     LinearSpring.name: LinearSpring,
+    PowerSpring.name: PowerSpring,
 }
 
-__all__ = ["LINEAR", "SPRING_LAWS", "LinearSpring", "SpringLaw", "spring_from_attrs", "spring_from_spec"]
+__all__ = ["LINEAR", "SPRING_LAWS", "LinearSpring", "PowerSpring", "SpringLaw", "spring_from_attrs", "spring_from_spec"]
 
 
 def spring_from_spec(spec: dict | None) -> SpringLaw:

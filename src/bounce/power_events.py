@@ -1,0 +1,219 @@
+"""The event loop of the power-law spring (paper, Discussion; numba kernel) and its Python front.
+
+Same events, records and rules as :mod:`bounce.events` (kind codes imported from
+there): state between events (x, u = x', a = xi', eta = xi - xi_eq) with
+xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), and at x = 0
+
+* **impact** (eq. ``collision-rule``, applied as the Discussion prescribes):
+  psi' and xi' are exchanged: u -> -x'(tau), a -> psi'(tau^-) = u + a - gamma tau;
+* **grazing** (eq. ``swishes``): a tangential contact with x'' > 0, nothing exchanged;
+* **sticky_start** (eq. ``sticky-condition``): x = x' = x'' = 0, or a start at rest on
+  the floor with x'' <= 0.  The sticky phase of the nonlinear spring is not integrated
+  yet: the loop records the onset and stops with stop reason ``sticky_unsupported``
+  (never a guessed continuation).  Its equation, for the record: with the floor
+  reaction R >= 0 on the lower mass, x'' = -gamma + f(xi) + 2 mu xi' |xi|^b + R and
+  y'' = -gamma - f(xi) - 2 mu xi' |xi|^b (eq. ``eq-motion-nonlin-psi-xi`` written for
+  x = psi - xi, y = psi + xi + 1); x = 0 gives xi = (y - 1)/2 and
+
+      xi'' = -(gamma + f(xi) + 2 mu xi' |xi|^b) / 2,    f(xi) = rho xi |xi|^a,
+
+  with the floor force F = f(xi) + 2 mu xi' |xi|^b - gamma = -2 (gamma + xi'') (the x''
+  of the free motion; eq. ``force-on-the-floor`` for a = b = 0, rho = 1), R = -F >= 0.
+  Detachment is the first F = 0 with F' > 0 (eq. ``cond_di_distacco``).  The sticky
+  equation has the same equilibrium xi_eq (there F = -2 gamma) and the non-increasing
+  energy xi'^2/2 + (gamma xi + V(xi))/2 (rate -mu xi'^2 |xi|^b), which bounds F on the
+  rest of the phase and can prove it infinite as in :mod:`bounce.events`.
+
+Tangential contacts are classified by :func:`bounce.events._is_tangential` and
+:func:`bounce.events._is_sticky_onset` (the same rounding-level rule), with x''
+and x''' from the series at the contact.  Time is summed with Neumaier's
+compensated sum (:func:`bounce.events.compensated_add`).
+
+Energy (eq. ``nonlin-energy``): at x = 0 (psi = xi) the excess over the minimum
+E_m = -gamma |xi_eq| (a+1)/(a+2) is
+
+    E - E_m = (a^2 + (u + a)^2)/2 + V(xi_eq + eta) - V(xi_eq) + gamma eta,
+
+and the last three terms, a Bregman divergence of V = rho |xi|^(a+2)/(a+2) of size
+O(eta^2), are summed as gamma |xi_eq| / (a+2) * sum_{k>=2} C(a+2, k) (-e)^k,
+e = eta / |xi_eq|, without cancellation (:func:`energy_excess`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .events import (
+    DETACH,  # noqa: F401  (kind codes of the shared records)
+    GRAZING,
+    IMPACT,
+    KIND_NAMES,
+    STICKY_START,
+    STOP_ENERGY,
+    STOP_EVENTS,
+    STOP_FAILED,
+    STOP_NAMES,
+    STOP_TIME,
+    _is_sticky_onset,
+    _is_tangential,
+    compensated_add,
+)
+from .flight import EPS, FOUND, HORIZON
+from .power_flight import AT_REST, HANDOVER, first_contact, short_flight
+from .power_series import DEGREE_LONG, L_AP1, L_GAMMA, L_XI_EQ, law_array
+
+#: the sticky phase of the nonlinear spring is not integrated: the loop stops at its onset
+STOP_STICKY_UNSUPPORTED = len(STOP_NAMES)
+POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported",)
+
+
+@njit(cache=True)
+def energy_excess(u, a, eta, law):
+    """E - E_m at x = 0 (eq. ``nonlin-energy``), the potential part without cancellation."""
+    gamma = law[L_GAMMA]
+    w_eq = -law[L_XI_EQ]
+    p = law[L_AP1] + 1.0
+    e = eta / w_eq
+    if abs(e) <= 0.25:
+        term = -p * e
+        g = 0.0
+        for k in range(2, 200):
+            term *= (p - k + 1.0) / k * -e
+            g += term
+            if abs(term) <= 1e-17 * abs(g) or term == 0.0:
+                break
+    else:
+        g = abs(1.0 - e) ** p - 1.0 + p * e
+    return 0.5 * (a * a + (u + a) * (u + a)) + gamma * w_eq / p * g
+
+
+@njit(cache=True)
+def _record(i, t, tau, kind, u, a, eta, law, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind):
+    out_t[i] = t
+    out_tau[i] = tau
+    out_u[i] = u
+    out_a[i] = a
+    out_eta[i] = eta
+    out_e[i] = energy_excess(u, a, eta, law)
+    out_kind[i] = kind
+
+
+@njit(cache=True)
+def run_power_events(
+    x0, u, a, eta, law, max_events, t_max, e_stop,
+    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind,
+):
+    """Advance (x0, u, a, eta) from t = 0 and record every event, as :func:`bounce.events.run_events`.
+
+    Returns ``(n_events, stop_reason, t_end)``; stop reasons index POWER_STOP_NAMES.
+    """
+    gamma = law[L_GAMMA]
+    X = np.empty(DEGREE_LONG + 2)
+    P = np.empty(DEGREE_LONG + 2)
+    Q = np.empty(DEGREE_LONG + 2)
+    t_hi = 0.0
+    t_lo = 0.0
+    n = 0
+    stop = STOP_EVENTS
+    while n < max_events:
+        t_limit = t_max - (t_hi + t_lo)
+        status = HANDOVER
+        if x0 == 0.0 and u > 0.0:
+            status, tau, v, scale, eta_t, xid_t, acc, jerk = short_flight(u, a, eta, law, X, P, Q)
+            if status == FOUND and tau > t_limit:
+                stop = STOP_TIME
+                break
+        if status == HANDOVER:
+            status, tau, v, scale, eta_t, xid_t, acc, jerk = first_contact(x0, u, a, eta, t_limit, law, X, P, Q)
+            if status == AT_REST:
+                # at rest on the floor with x'' <= 0: a sticky state
+                _record(n, t_hi + t_lo, 0.0, STICKY_START, u, a, eta, law,
+                        out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+                n += 1
+                stop = STOP_STICKY_UNSUPPORTED
+                break
+            if status != FOUND:
+                stop = STOP_TIME if status == HORIZON else STOP_FAILED
+                break
+        x0 = 0.0
+        xn = 4.0 * EPS * scale + 1e-300
+        sticky = False
+        if not _is_tangential(v, acc, jerk, xn):
+            kind = IMPACT  # eq. collision-rule: psi' <-> xi'
+            a = u + a - gamma * tau
+            u = -v
+            eta = eta_t
+        else:  # nothing exchanged: psi' = xi' at a tangential contact
+            a = xid_t
+            eta = eta_t
+            u = 0.0
+            if _is_sticky_onset(acc, jerk, xn):
+                kind = STICKY_START
+                sticky = True
+            else:
+                kind = GRAZING
+        t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
+        _record(n, t_hi + t_lo, tau, kind, u, a, eta, law,
+                out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        n += 1
+        if sticky:
+            stop = STOP_STICKY_UNSUPPORTED
+            break
+        if out_e[n - 1] < e_stop:
+            stop = STOP_ENERGY
+            break
+    return n, stop, t_hi + t_lo
+
+
+def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float = math.inf,
+                   energy_stop: float = 0.0):
+    """Simulate the power-law spring ``spring`` (a :class:`bounce.springs.power.PowerSpring`, or the
+    linear law as rho = 1, a = b = 0).
+
+    ``initial``: a :class:`bounce.model.State`, or :class:`bounce.model.Deviations` whose
+    eta is xi - xi_eq of this law.  Returns a :class:`bounce.simulate.Trajectory`
+    with eta = xi - xi_eq and energy_excess = E - E_m of eq. ``nonlin-energy``.
+    Exact to rounding: series flights with rigorous tails and a root finder that
+    cannot skip an impact (:mod:`bounce.power_flight`).
+    """
+    from .model import Deviations, InputError, State
+    from .simulate import MAX_EVENTS, Trajectory, _positive_int
+
+    max_events = _positive_int("events", max_events, MAX_EVENTS)
+    t_max = float(t_max)
+    if math.isnan(t_max) or not t_max > 0.0:
+        raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
+    energy_stop = float(energy_stop)
+    if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
+        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    rho, a, b = (1.0, 0.0, 0.0) if spring.name == "linear" else (spring.rho, spring.a, spring.b)
+    law = law_array(rho, a, b, params.mu, params.gamma)
+    xi_eq = float(law[L_XI_EQ])
+    if isinstance(initial, State):
+        x, u, a = initial.x, initial.xdot, 0.5 * (initial.ydot - initial.xdot)
+        eta = 0.5 * ((initial.y - initial.x) - 1.0) - xi_eq  # xi - xi_eq, one rounding
+    elif isinstance(initial, Deviations):
+        x, u, a, eta = initial.x, initial.xdot, initial.xidot, initial.eta
+    else:
+        raise InputError(f"initial must be a State or Deviations, got {type(initial).__name__}")
+    out = [np.empty(max_events) for _ in range(6)]
+    kind = np.empty(max_events, dtype=np.int8)
+    n, stop, t_end = run_power_events(x, u, a, eta, law, max_events, t_max, energy_stop, *out, kind)
+    if stop == STOP_FAILED:
+        raise RuntimeError(
+            f"power-law root finder did not converge after event {n} (t = {t_end!r}); "
+            "please report the parameters and initial state"
+        )
+    t, tau, uu, aa, ee, e = (arr if n == max_events else arr[:n].copy() for arr in out)
+    return Trajectory(
+        params=params, initial=initial, t=t, tau=tau, xdot=uu, xidot=aa, eta=ee, energy_excess=e,
+        kind=kind if n == max_events else kind[:n].copy(), stop_reason=POWER_STOP_NAMES[stop], t_end=t_end,
+        settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop,
+                  **spring.attrs()},
+    )
+
+
+__all__ = ["KIND_NAMES", "POWER_STOP_NAMES", "energy_excess", "run_power_events", "simulate_power"]

@@ -1,0 +1,425 @@
+"""Flights of the power-law spring and the first-contact root finder that cannot skip an impact.
+
+Variables as in :mod:`bounce.flight`: x >= 0 the height of the lower mass, u = x',
+v = xi', and eta = xi - xi_eq, the deviation from the static equilibrium
+xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), so that states
+~1e-13 from equilibrium keep their digits.  With psi'' = -gamma and the spring of
+eq. ``eq-motion-nonlin-psi-xi``, a flight is computed in *steps*; over a step of
+length h from (x, u, v, eta) with the Taylor coefficients X_k of xi
+(:mod:`bounce.power_series`), D(s) = sum_{k>=2} X_k s^k and, for 0 <= s <= h,
+
+    x(s) = x + u s - gamma s^2/2 - D(s),   x'(s) = u - gamma s - D'(s),
+    eta(s) = eta + v s + D(s),             xi'(s) = v + D'(s)                (P)
+
+(x = psi - xi as a displacement from the step's start: nothing of size xi_eq is
+ever subtracted).  The degree and the step are chosen so that the rigorous tail
+bound of the series is below 2^-64 (hot path: 2^-55) of the rounding scale of x (x + |u| s +
+gamma s^2/2) and of x' (|u| + gamma s), and of xi (|xi0| + |v| s + |xi''(0)| s^2/2)
+and xi' (|v| + |xi''(0)| s) where those are smaller: the polynomial is then the
+flight to rounding (a tolerance relative to x alone would let a systematic
+truncation error of the spring build up over the steps of a long flight).
+
+No impact is skipped (:func:`first_contact`).  In flight the spring energy
+E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) does not increase (d/dt E_s = -2 mu xi'^2 |xi|^b),
+so from any time on |xi| <= W = ((a+2) E_s / rho)^(1/(a+2)), |xi'| <= V = sqrt(2 E_s) and
+
+    |x''| = |gamma + xi''| <= B = gamma + rho W^(a+1) + 2 mu V W^b.
+
+From a point with x > 0, x' = w, Taylor's theorem gives x(s) >= x + w s - B s^2/2,
+whose smallest positive root is a step that cannot cross the floor (as in
+:func:`bounce.flight.first_contact`); B is refreshed at every series step.  The
+march evaluates (P) within rounding, so the only roots it can miss are dips of x
+below the floor shallower than its rounding error, which no float64 computation
+sees.  A step that passes a minimum of x (x' turns from negative to
+non-negative) locates it, and a minimum within rounding of the floor is a
+tangential contact.  At the root (|x| <= 4 eps scale) one Newton step polishes it.
+
+The non-analytic point xi = 0 (a, b not both 0).  The series around xi0 has
+radius <= |xi0| / |xi'|-ish, so steps shrink geometrically towards xi = 0; once
+|xi| <= delta/2 with
+
+    delta = min( (2^-57 v^2 / (rho 1.01^(a+1)))^(1/(a+2)),  (2^-58 v^2 / (mu V 1.01^b))^(1/(b+1)) ),
+
+the crossing is one *window*: from |xi| <= delta/2, xi moves at constant speed v
+to the point sign(v) delta (on the other side, or on the same side when moving
+away from 0) in T <= 2 delta/|v|, and the series takes over again there.  There |xi''| <= F =
+rho (1.01 delta)^(a+1) + 2 mu V (1.01 delta)^b, so the neglected change of xi' is
+<= F T <= 2^-55 |v| and that of xi (and of x) <= F T^2/2 <= 2^-56 |v| T: the window
+is exact to rounding.  For b = 0 the damping is linear and solved exactly in the
+window (xi' = v exp(-2 mu s)); only the restoring force is neglected, and the
+second term of delta is dropped.  Approximation: delta is never below 16 ulps of
+xi_eq, the resolution of xi in the deviation variable eta; where that floor is
+active (|v| below ~1e-8 for Hertz) the neglected change F T exceeds 2^-55 |v|,
+but stays below the rounding of the state itself (F T <= F 2 delta/|v|, delta ~1e-15).  The floor is checked over the window with the safe step
+(an impact inside a 1e-11-wide crossing window is reported as FAILED, not guessed).
+
+Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
+regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
+(cubic predictor, Newton steps certified to keep x > 0 before the root and to be
+within rounding of it).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .events import compensated_add
+from .flight import EPS, FAILED, FOUND, HORIZON, safe_step
+from .power_series import (
+    DEGREE_LONG,
+    DEGREE_SHORT,
+    L_AP1,
+    L_B,
+    L_GAMMA,
+    L_MU,
+    L_RHO,
+    L_XI_EQ,
+    MARGIN,
+    L_ANALYTIC_A,
+    L_ANALYTIC_B,
+    cauchy_radius,
+    curvature,
+    displacement,
+    powers_at,
+    tail_bounds,
+    taylor_coefficients,
+)
+
+#: truncation target of the hot path (one step per flight) relative to the rounding scale.
+TOL = 2.0**-55
+#: truncation target of a general step: a truncation error is systematic (the same sign from step
+#: to step), so over the ~1e4 steps of a long flight through many xi = 0 crossings 2^-55 per
+#: step would add up to ~1e-13; 2^-64 keeps the sum below 2^-50 of the scale.
+TOL_LONG = 2.0**-64
+#: cap on evaluations per flight (a crawl towards a tangency needs ~1e3).
+MAX_EVALS = 400_000
+#: status: the hot path hands over to the general stepper.
+HANDOVER = 4
+#: status: the flight starts at rest on the floor with x'' <= 0 (a sticky state).
+AT_REST = 5
+
+
+@njit(cache=True)
+def spring_energy(w0, v, p0, law):
+    """E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) (the spring part of eq. ``nonlin-energy``)."""
+    return 0.5 * v * v + law[L_RHO] * w0 * p0 / (law[L_AP1] + 1.0)
+
+
+@njit(cache=True)
+def curvature_bound(Es, law):
+    """B >= |x''| for the rest of the flight from the spring energy Es (module docstring)."""
+    gamma = law[L_GAMMA]
+    if Es <= 0.0:
+        return gamma * MARGIN
+    rho = law[L_RHO]
+    ap2 = law[L_AP1] + 1.0
+    Es *= MARGIN
+    W = (ap2 * Es / rho) ** (1.0 / ap2)
+    Wq = 1.0 if law[L_ANALYTIC_B] == 1.0 else W ** law[L_B]
+    return (gamma + ap2 * Es / W + 2.0 * law[L_MU] * math.sqrt(2.0 * Es) * Wq) * MARGIN  # rho W^(a+1) = ap2 Es / W
+
+
+@njit(cache=True)
+def _curvature_bound_near(w0, v, p0, q0, law):
+    """A bound B >= |x''| for the rest of the flight like :func:`curvature_bound`, without powers.
+
+    With E_s = v^2/2 + rho w0 p0/(a+2) and W^(a+2) = (a+2) E_s / rho = w0^(a+2) (1 + e),
+    e = (a+2) v^2 / (2 rho w0 p0): W <= w0 (1 + e/(a+2)) (concavity of the root, a + 2 >= 1),
+    rho W^(a+1) = (a+2) E_s / W <= (a+2) E_s / w0 and W^b <= q0 exp(b e/(a+2)) <= q0 / (1 - b e/(a+2))
+    when b e/(a+2) < 1 (else the general bound).
+    """
+    ap2 = law[L_AP1] + 1.0
+    Es = spring_energy(w0, v, p0, law) * MARGIN
+    r = v * v / (2.0 * law[L_RHO] * w0 * p0)  # e / (a + 2)
+    be = law[L_B] * r
+    if not be < 0.5:
+        return curvature_bound(Es, law)
+    return (law[L_GAMMA] + ap2 * Es / w0 + 2.0 * law[L_MU] * math.sqrt(2.0 * Es) * q0 / (1.0 - be)) * MARGIN
+
+
+@njit(cache=True)
+def crossing_halfwidth(v, Es, law):
+    """delta of the window through xi = 0 (module docstring); 0 if v = 0."""
+    if v == 0.0:
+        return 0.0
+    v2 = v * v
+    delta = (2.0**-57 * v2 / (law[L_RHO] * 1.01 ** law[L_AP1])) ** (1.0 / (law[L_AP1] + 1.0))
+    mu = law[L_MU]
+    if mu > 0.0 and law[L_ANALYTIC_B] == 0.0:
+        damp = (2.0**-58 * v2 / (mu * math.sqrt(2.0 * Es) * MARGIN * 1.01 ** law[L_B])) ** (1.0 / (law[L_B] + 1.0))
+        delta = min(delta, damp)
+    # eta = xi - xi_eq resolves xi only to ~ulp(xi_eq): no window narrower than that
+    return max(delta, 16.0 * EPS * abs(law[L_XI_EQ]))
+
+
+@njit(cache=True)
+def _evaluate(s, x, xl, u, ul, gamma, H, K, X):
+    """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s).
+
+    (x + xl, u + ul) is the step's start state carried with its compensation terms
+    (Neumaier sums over the steps of a long flight): the increment is added to x
+    first, where near a root it cancels exactly, then the small terms.
+    """
+    D, Dp = displacement(s, H, K, X)
+    xs = (x + (u * s - 0.5 * gamma * s * s - D)) + (xl + ul * s)
+    vs = (u + (-gamma * s - Dp)) + ul
+    scale = x + abs(u) * s + 0.5 * gamma * s * s + abs(D)
+    return xs, vs, scale, D, Dp
+
+
+@njit(cache=True)
+def _minimum(s0, s1, x, xl, u, ul, gamma, H, K, X):
+    """Time of the minimum of x between s0 (x' < 0) and s1 (x' >= 0): Newton on x' kept in the bracket."""
+    lo, hi = s0, s1
+    s = 0.5 * (s0 + s1)
+    for _ in range(60):
+        if not lo < s < hi:
+            s = 0.5 * (lo + hi)
+        _, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, H, K, X)
+        if vs < 0.0:
+            lo = s
+        else:
+            hi = s
+        A = -gamma - curvature(s, H, K, X)[0]
+        step = -vs / A if A > 0.0 else 0.0
+        if step == 0.0 or abs(step) <= 4.0 * EPS * s or hi - lo <= 4.0 * EPS * hi:
+            break
+        s += step
+    return s
+
+
+@njit(cache=True)
+def _liftoff(acc, h, radius, Rz, Rp, K, X):
+    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0.
+
+    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S]; S halves until positive.
+    """
+    S = h
+    for _ in range(400):
+        poly = 0.0
+        for k in range(K, 2, -1):
+            poly = poly * (S / radius) + abs(X[k])
+        tail = tail_bounds(S / radius, K, Rz, Rp)[0]
+        if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
+            return S
+        S *= 0.5
+    return 0.0
+
+
+@njit(cache=True)
+def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
+    """First time tau in (0, t_limit] with x(tau) = 0 for the flight from (x, u, v, eta).
+
+    Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
+    ``(status, tau, x'(tau), scale, eta(tau), xi'(tau), x''(tau), x'''(tau))``:
+    status FOUND (polished root, or a minimum within rounding of the floor),
+    HORIZON (no contact up to t_limit), AT_REST (x = u = 0 and x'' <= 0: the mass
+    cannot lift off) or FAILED (evaluation cap, or a floor contact inside a crossing
+    window); the other fields are meaningful at FOUND only.  The state is carried
+    from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
+    that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi_eq = law[L_XI_EQ]
+    singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
+    K = DEGREE_LONG
+    t_hi, t_lo = 0.0, 0.0
+    xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
+    B = math.inf
+    evals = 0
+    while evals < MAX_EVALS:
+        t = t_hi + t_lo
+        xi0 = xi_eq + eta
+        w0 = abs(xi0)
+        p0, q0 = powers_at(w0, law)
+        Es = spring_energy(w0, v, p0, law)
+        B = min(B, curvature_bound(Es, law))
+        if Es == 0.0:
+            # spring at rest at its rest length: xi stays 0, x is the parabola of free fall
+            u += ul
+            x += xl
+            root = math.sqrt(u * u + 2.0 * gamma * x)
+            s = (u + root) / gamma if u >= 0.0 else 2.0 * x / (root - u)
+            if t + s > t_limit:
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            t_hi, t_lo = compensated_add(t_hi, t_lo, s)
+            return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
+        delta = crossing_halfwidth(v, Es, law) if singular else 0.0
+        if singular and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
+            d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
+            if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
+                # linear damping solved exactly in the window: xi' = v exp(-2 mu s)
+                arg = 2.0 * mu * d / v
+                if not arg < 0.5:
+                    return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+                T = -math.log1p(-arg) / (2.0 * mu)
+                dv = v * math.expm1(-2.0 * mu * T)
+            else:
+                T = d / v
+                dv = 0.0
+            if not (x == 0.0 and u == 0.0) and safe_step(x + xl, u + ul, B) <= T:
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            if t + T > t_limit:
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            # x = psi - xi: psi moves by (u + v) T - gamma T^2/2, xi by d
+            x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
+            u, ul = compensated_add(u, ul, -gamma * T - dv)
+            eta, el = compensated_add(eta, el, d + vl * T)
+            v, vl = compensated_add(v, vl, dv)
+            t_hi, t_lo = compensated_add(t_hi, t_lo, T)
+            evals += 1
+            continue
+        radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+        xidd0 = abs(rho * p0 + 2.0 * mu * v * q0 * (1.0 if xi0 >= 0.0 else -1.0))  # |xi''(0)|
+        theta = 0.5
+        for _ in range(200):
+            h = theta * radius
+            tx, tv = tail_bounds(theta, K, Rz, Rp)
+            # rounding scales of x, x' and of xi, xi' over the step: the tail stays below the smaller
+            scale_x = min(x + abs(u) * h + 0.5 * gamma * h * h, w0 + abs(v) * h + 0.5 * xidd0 * h * h)
+            scale_v = min(abs(u) + gamma * h, abs(v) + xidd0 * h)
+            if tx <= TOL_LONG * scale_x and tv <= TOL_LONG * scale_v:
+                break
+            theta *= 0.7
+        h = theta * radius
+        last = t + h >= t_limit
+        if last:
+            h = t_limit - t
+        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, radius, K, X, P, Q)
+        s = 0.0
+        xs, vs = x + xl, u + ul
+        if x == 0.0 and u == 0.0:
+            acc = -gamma - 2.0 * X[2] / (radius * radius)
+            if not acc > 0.0:
+                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3] / radius**3
+            s = _liftoff(acc, h, radius, Rz, Rp, K, X)
+            if s == 0.0:
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
+        D, Dp = 0.0, 0.0
+        while evals < MAX_EVALS:
+            evals += 1
+            s_new = s + safe_step(xs, vs, B)
+            at_end = s_new >= h
+            if at_end:
+                s_new = h
+            s_prev, v_prev = s, vs
+            s = s_new
+            xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
+            if xs <= 4.0 * EPS * scale:
+                if vs < 0.0:  # Newton polish, re-evaluated at the polished time
+                    s = s - xs / vs
+                    xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X)
+            if v_prev < 0.0 <= vs:
+                sm = _minimum(s_prev, s, x, xl, u, ul, gamma, radius, K, X)
+                xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, radius, K, X)
+                if xm <= 4.0 * EPS * sc_m:
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X)
+            if at_end:
+                break
+        if last:
+            return HORIZON, t_limit, (u + ul) + (-gamma * h - Dp), (x + xl) + (u * h - 0.5 * gamma * h * h - D), eta + ((v * h + D) + (el + vl * h)), (v + vl) + Dp, 0.0, 0.0
+        x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
+        u, ul = compensated_add(u, ul, -gamma * h - Dp)
+        eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
+        v, vl = compensated_add(v, vl, Dp)
+        t_hi, t_lo = compensated_add(t_hi, t_lo, h)
+    return FAILED, t_hi + t_lo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X):
+    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
+    D2, D3 = curvature(s, H, K, X)
+    t_hi, t_lo = compensated_add(t_hi, t_lo, s)
+    return FOUND, t_hi + t_lo, vs, scale, eta + ((v * s + D) + (el + vl * s)), (v + Dp) + vl, -gamma - D2, -D3
+
+
+@njit(cache=True)
+def short_flight(u, v, eta, law, X, P, Q):
+    """First contact of a flight from the floor (x = 0, x' = u > 0) as one series step.
+
+    Returns what :func:`first_contact` returns, or status HANDOVER when the flight
+    is not one short step (then the caller runs :func:`first_contact`).
+
+    Window T = 2.5 u / (gamma + |xi''(0)|) (over-estimates the flight, whose
+    curvature is ~ gamma + xi''); degree K the least for which the tail bounds on
+    [0, T] are below 2^-55 u T (x) and 2^-55 u (x').  Fast path: the root t_p of
+    the cubic model, then Newton steps dt = -x/x', each certified as in
+    :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
+    B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
+    from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
+    (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x.  Otherwise the safe march.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi0 = law[L_XI_EQ] + eta
+    w0 = abs(xi0)
+    if w0 == 0.0:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    p0, q0 = powers_at(w0, law)
+    sigma_p0 = p0 if xi0 > 0.0 else -p0
+    xidd0 = -rho * sigma_p0 - 2.0 * mu * v * q0
+    T = 2.5 * u / (gamma + abs(xidd0))
+    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+    theta = T / radius
+    if not theta <= 0.25:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    tol_x = TOL * u * T
+    tol_v = TOL * u
+    K = 3
+    tk = theta * theta * theta / (1.0 - theta) * MARGIN  # theta^K / (1 - theta), as in tail_bounds
+    while Rz * tk * theta > tol_x or Rp * tk > tol_v:
+        K += 1
+        tk *= theta
+        if K > DEGREE_SHORT:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, 1.0, K, X, P, Q)
+    B = _curvature_bound_near(w0, v, p0, q0, law)
+    A0 = -gamma - 2.0 * X[2]
+    disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
+    if A0 < 0.0 and disc > 0.0:
+        t = 2.0 * u / (math.sqrt(disc) - 0.5 * A0)
+        for _ in range(4):
+            if not 0.0 < t <= T:
+                break
+            xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
+            if not vs < 0.0:
+                break
+            dt = -xs / vs
+            if B * dt * dt <= 8.0 * EPS * scale:
+                if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
+                    # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
+                    D2, D3 = curvature(t, 1.0, K, X)
+                    D += Dp * dt
+                    Dp += D2 * dt
+                    t += dt
+                    return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
+                break
+            t += dt
+    # general march from the first safe step
+    s = 2.0 * u / B
+    if s > T:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    for _ in range(64):
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
+        if xs <= 4.0 * EPS * scale:
+            break
+        s_new = s + safe_step(xs, vs, B)
+        if s_new > T or vs >= 0.0:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        if s_new == s:
+            break
+        s = s_new
+    else:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    if vs < 0.0:
+        s -= xs / vs
+        xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X)

@@ -1,0 +1,198 @@
+"""Taylor series of the power-law spring along a flight, with a rigorous tail bound.
+
+The spring obeys (paper, eq. ``eq-motion-nonlin-psi-xi``; the sticky phase of
+:mod:`bounce.power_events` has the same form with a constant c0 and halved r, m)
+
+    xi'' = -c0 - r xi |xi|^a - 2 m xi' |xi|^b.                            (S)
+
+Coefficients.  Around a point xi0 != 0 with sign sigma, |xi| = sigma xi is analytic
+while xi keeps its sign, and with X_k = xi^(k)(t0)/k! the powers P = |xi|^(a+1),
+Q = |xi|^b follow from J. C. P. Miller's recurrence for F = G^p
+(G F' = p G' F, compared coefficient by coefficient):
+
+    k G_0 F_k = sum_{j=1..k} (p j - (k - j)) G_j F_{k-j},    G_j = sigma X_j,
+
+and (S) gives, with a Cauchy sum for the product xi' Q,
+
+    (k+1)(k+2) X_{k+2} = -c0 [k = 0] - r sigma P_k - 2 m sum_{j=0..k} (j+1) X_{j+1} Q_{k-j}.
+
+For a = 0 (b = 0) the power is xi itself (1) and is not formed by the recurrence:
+the linear law (a = b = 0) is then analytic through xi = 0 and loses no digit to a
+division by |xi0|.
+
+Rigorous tail (Cauchy's majorant argument).  Let D be the closed polydisc
+|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.8 |xi0| (so sigma z keeps a
+positive real part and (S) is holomorphic in D; any Rz for a = b = 0).  On D the
+right side of (S) is bounded by M = M0 + M1 Rp with
+
+    M0 = c0 + r (1.8 |xi0|)^(a+1) + 2 m |v0| (1.8 |xi0|)^b,   M1 = 2 m (1.8 |xi0|)^b
+
+(|w^p| = |w|^p on the principal branch).  Along every complex ray t = s e^(i phi)
+the solution cannot leave D before s = r_c = min(Rz / (|v0| + Rp), Rp / M), so it
+is holomorphic on |t| < r_c with |xi - xi0| <= Rz and |xi' - v0| <= Rp there; Rp is
+chosen to balance the two limits.  Cauchy's estimate gives |X_k| <= Rz / r_c^k and
+|(k+1) X_{k+1}| <= Rp / r_c^k, so for |h| <= theta r_c (theta < 1) the series of xi
+truncated after h^K is in error by at most Rz theta^(K+1) / (1 - theta), and the
+series of xi' (degree K - 1) by at most Rp theta^K / (1 - theta).  These bounds
+are what :mod:`bounce.power_flight` compares with the rounding level of x and x'.
+The coefficients themselves carry the usual relative rounding of a recurrence
+(a few ulps times the degree); they are not part of the bound.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|).
+DISC = 0.8
+#: highest degree of a general (long-flight) step.
+DEGREE_LONG = 32
+#: highest degree of the hot path before it hands over to general steps.
+DEGREE_SHORT = 12
+#: relative margin on computed bounds (covers their own rounding).
+MARGIN = 1.0 + 1e-12
+
+#: 1/k (INV[0] unused)
+INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
+
+# layout of the law array (see law_array)
+L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B = range(10)
+LAW_SIZE = 10
+
+
+def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
+    """The spring law and the flight constants as one float array for the kernels.
+
+    Holds rho, a + 1, b, mu, gamma, xi_eq = -(gamma/rho)^(1/(a+1)) (eq.
+    ``nonlin-equilibrium-xi``), the factors (1 + DISC)^(a+1), (1 + DISC)^b of the
+    majorant, and whether the restoring (a = 0) and damping (b = 0) terms are analytic.
+    """
+    xi_eq = -((gamma / rho) ** (1.0 / (a + 1.0)))
+    return np.array([
+        rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
+        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0,
+    ])
+
+
+@njit(cache=True)
+def powers_at(w0, law):
+    """(|xi0|^(a+1), |xi0|^b) at |xi0| = w0 (exact for the analytic cases; Hertz by one sqrt)."""
+    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
+        return w0, 1.0
+    if law[L_AP1] == 1.5 and law[L_B] == 0.5:  # Hertz: one square root
+        q0 = math.sqrt(w0)
+        return w0 * q0, q0
+    p0 = w0 if law[L_ANALYTIC_A] == 1.0 else w0 ** law[L_AP1]
+    q0 = 1.0 if law[L_ANALYTIC_B] == 1.0 else w0 ** law[L_B]
+    return p0, q0
+
+
+@njit(cache=True)
+def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
+    """Fill X[0..K] with H^k xi^(k)(t0)/k! for eq. (S) from xi(t0) = xi0, xi'(t0) = v0.
+
+    H is the time unit of the coefficients (H = r_c keeps |X_k| <= Rz: no overflow
+    when the series is taken close to xi = 0, where r_c ~ |xi0| / |v0| is tiny).
+
+    w0 = |xi0| > 0 unless the law is linear; p0, q0 from :func:`powers_at`; P, Q are
+    work arrays (length > K) for the coefficients of |xi|^(a+1) and |xi|^b.
+    """
+    ap1 = law[L_AP1]
+    b = law[L_B]
+    lin_a = law[L_ANALYTIC_A] == 1.0
+    lin_b = law[L_ANALYTIC_B] == 1.0
+    sigma = 1.0 if xi0 >= 0.0 else -1.0
+    inv_xi0 = 1.0 / xi0 if xi0 != 0.0 else 0.0  # used only when xi0 != 0 (singular laws)
+    X[0] = xi0
+    X[1] = v0 * H
+    H2 = H * H
+    P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
+    Q[0] = q0
+    for k in range(0, K - 1):
+        if k >= 1:
+            if lin_a:
+                P[k] = X[k]
+            else:
+                s = 0.0
+                for j in range(1, k + 1):
+                    s += (ap1 * j - (k - j)) * X[j] * P[k - j]
+                P[k] = s * inv_xi0 * INV[k]  # G_j = sigma X_j, G_0 = sigma xi0, P_k = sigma F_k
+            if lin_b:
+                Q[k] = 0.0
+            else:
+                s = 0.0
+                for j in range(1, k + 1):
+                    s += (b * j - (k - j)) * X[j] * Q[k - j]
+                Q[k] = s * inv_xi0 * INV[k]
+        if lin_b:
+            damp = (k + 1) * X[k + 1] * q0
+        else:
+            damp = 0.0
+            for j in range(0, k + 1):
+                damp += (j + 1) * X[j + 1] * Q[k - j]
+        rhs = -(H2 * r * P[k] + 2.0 * m * H * damp)
+        if k == 0:
+            rhs -= H2 * c0
+        X[k + 2] = rhs * INV[k + 1] * INV[k + 2]
+
+
+@njit(cache=True)
+def cauchy_radius(w0, v0, p0, q0, c0, r, m, law):
+    """(r_c, Rz, Rp) of the majorant argument in the module docstring.
+
+    Within |t| < r_c: |xi(t) - xi0| <= Rz and |xi'(t) - v0| <= Rp.
+    """
+    av = abs(v0)
+    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
+        Rz = max(w0, av) + 1e-300
+        M0 = c0 + r * (w0 + Rz) + 2.0 * m * av
+        M1 = 2.0 * m
+    else:
+        Rz = DISC * w0
+        M0 = c0 + r * law[L_GROW_A] * p0 + 2.0 * m * av * law[L_GROW_B] * q0
+        M1 = 2.0 * m * law[L_GROW_B] * q0
+    M0 *= MARGIN
+    M1 *= MARGIN
+    # balance Rz / (|v0| + Rp) = Rp / (M0 + M1 Rp):  Rp^2 + (|v0| - M1 Rz) Rp - M0 Rz = 0
+    beta = av - M1 * Rz
+    disc = math.sqrt(beta * beta + 4.0 * M0 * Rz)
+    Rp = 0.5 * (disc - beta) if beta <= 0.0 else 2.0 * M0 * Rz / (disc + beta)
+    M = M0 + M1 * Rp
+    lim_z = Rz / (av + Rp) if av + Rp > 0.0 else math.inf
+    lim_p = Rp / M if M > 0.0 else math.inf
+    return min(lim_z, lim_p) / MARGIN, Rz, Rp
+
+
+@njit(cache=True)
+def tail_bounds(theta, K, Rz, Rp):
+    """Truncation bounds (xi after h^K, xi' after h^(K-1)) for |h| <= theta r_c."""
+    tk = theta**K / (1.0 - theta) * MARGIN
+    return Rz * tk * theta, Rp * tk
+
+
+@njit(cache=True)
+def displacement(s, H, K, X):
+    """(D, D') at s for D(s) = sum_{k=2..K} X_k (s/H)^k, so that xi(s) = X0 + X1 s/H + D(s)."""
+    z = s / H
+    d0 = X[K]
+    d1 = K * X[K]
+    for k in range(K - 1, 1, -1):
+        d0 = d0 * z + X[k]
+        d1 = d1 * z + k * X[k]
+    return d0 * z * z, d1 * z / H
+
+
+@njit(cache=True)
+def curvature(s, H, K, X):
+    """(D'', D''') at s: xi'' and xi''' of the truncated series (K >= 3)."""
+    z = s / H
+    d2 = K * (K - 1) * X[K]
+    d3 = K * (K - 1) * (K - 2) * X[K]
+    for k in range(K - 1, 1, -1):
+        d2 = d2 * z + k * (k - 1) * X[k]
+    for k in range(K - 1, 2, -1):
+        d3 = d3 * z + k * (k - 1) * (k - 2) * X[k]
+    return d2 / (H * H), d3 / (H * H * H)

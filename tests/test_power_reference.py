@@ -1,0 +1,49 @@
+"""The power-law solver against the independent mpmath reference (tests/power_reference.py), per flight.
+
+Hertz (a = b = 1/2) and two other laws, a moderately excited flight and flights deep near
+equilibrium: flight time and post-impact state to 1e-14, each component relative to the
+larger of its value and the terms it is summed from (see test_power_core.assert_flight_matches).
+"""
+
+from __future__ import annotations
+
+import pytest
+from mpmath import mp, mpf
+
+import power_reference as PR
+from bounce import Deviations, Parameters
+from bounce.power_events import simulate_power
+from bounce.power_series import L_XI_EQ, law_array
+from bounce.springs.power import PowerSpring
+
+REL = 1e-14
+LAWS = [PowerSpring(1.0, 0.5, 0.5), PowerSpring(2.0, 1.0, 0.0), PowerSpring(0.5, 0.25, 1.0)]
+# (x, xdot, xidot, eta): from the floor, moderately excited; and deep near equilibrium
+STARTS = {
+    "excited": (0.0, 0.3, 0.1, 0.02),
+    "excited_above": (0.05, -0.1, -0.2, -0.01),
+    "deep": (0.0, 1e-8, 3e-9, -2e-9),
+    "deeper": (0.0, 1e-11, -1e-12, 5e-12),
+}
+
+
+@pytest.mark.parametrize("spring", LAWS, ids=lambda s: f"rho{s.rho}_a{s.a}_b{s.b}")
+@pytest.mark.parametrize("start", list(STARTS), ids=str)
+@pytest.mark.parametrize("gamma, mu", [(0.01, 0.1), (0.1, 0.5)])
+def test_first_impact_matches_reference(spring, start, gamma, mu):
+    x, u, a, eta = STARTS[start]
+    tr = simulate_power(Parameters(gamma, mu, spring), spring, Deviations(x=x, xdot=u, xidot=a, eta=eta),
+                        max_events=1)
+    xi_eq = float(law_array(spring.rho, spring.a, spring.b, mu, gamma)[L_XI_EQ])  # the solver's origin of eta
+    with mp.workdps(60):
+        xi0 = mpf(xi_eq) + mpf(eta)  # exactly the solver's start xi = xi_eq + eta
+    ref = PR.reference_first_impact(gamma, mu, spring.rho, spring.a, spring.b, x, u, a, xi0)
+    assert tr.kind[0] == 0  # an impact
+    tau = float(ref["tau"])
+    assert abs(tr.tau[0] - tau) <= REL * tau, (tr.tau[0], tau)
+    assert abs(tr.xdot[0] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (tr.xdot[0], ref["xdot"])
+    a_scale = abs(u) + abs(a) + gamma * tau
+    assert abs(tr.xidot[0] - float(ref["xidot"])) <= REL * a_scale, (tr.xidot[0], ref["xidot"])
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(xi_eq))  # xi(tau) - xi_eq, rounded once
+    assert abs(tr.eta[0] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (tr.eta[0], eta_ref)
