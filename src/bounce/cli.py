@@ -43,6 +43,7 @@ from .events import KIND_NAMES
 from .io import check_output_path, to_dataset, write_netcdf
 from .model import InputError, Parameters, State, check_physical, check_supported
 from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
+from .springs import spring_from_spec
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -140,6 +141,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="g m / (2 L k), > 0")
     p.add_argument("--mu", required=True, type=_number("[0, inf)"),
                    help="damping nu / sqrt(2 k m), >= 0")
+    sp = p.add_argument_group("spring law (paper's Discussion, eq. eq-motion-nonlin-psi-xi: "
+                              "xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b; linear: rho = 1, a = b = 0)")
+    sp.add_argument("--spring", choices=("linear", "power"), default="linear",
+                    help="linear (default, closed-form flights) or power (Taylor-series flights)")
+    sp.add_argument("--rho", type=_ANY, help="stiffness of the power law, > 0 (with --spring power)")
+    sp.add_argument("--a", type=_ANY, help="exponent of the restoring force, >= 0 (Hertz: 0.5)")
+    sp.add_argument("--b", type=_ANY, help="exponent of the damping, >= 0 (Hertz: 0.5)")
     xy = p.add_argument_group("initial state, heights and velocities")
     xy.add_argument("--x0", type=_number("[0, inf)"), help="height of the lower mass, >= 0")
     xy.add_argument("--xdot0", type=_ANY, help="velocity of the lower mass (>= 0 if x0 = 0)")
@@ -163,6 +171,20 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 # --------------------------------------------------------------------------- helpers
+
+def _spring(args):
+    """The law of --spring/--rho/--a/--b (bounce.springs): every parameter of the power law is required."""
+    law_params = {k: getattr(args, k) for k in ("rho", "a", "b")}
+    if args.spring == "linear":
+        given = [f"--{k}" for k, v in law_params.items() if v is not None]
+        if given:
+            raise UsageError(f"{' '.join(given)}: only with --spring power (the linear spring has rho = 1, a = b = 0)")
+        return spring_from_spec(None)
+    missing = [f"--{k}" for k, v in law_params.items() if v is None]
+    if missing:
+        raise UsageError(f"--spring power needs {' '.join(missing)} (rho > 0, a >= 0, b >= 0; Hertz: a = b = 0.5)")
+    return spring_from_spec({"law": "power", **law_params})
+
 
 def _initial_state(args) -> State:
     given_xy = [n for n in XY_FORM if getattr(args, n) is not None]
@@ -230,7 +252,7 @@ def _summary(traj, path, n_samples) -> str:
 
 
 def _simulate_command(args) -> int:
-    params = Parameters(args.gamma, args.mu)
+    params = Parameters(args.gamma, args.mu, _spring(args))
     initial = _initial_state(args)
     check_supported(params, initial.deviations(params))
     try:
