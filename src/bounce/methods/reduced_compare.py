@@ -78,6 +78,20 @@ def _falcon_r(t_impacts: np.ndarray, paired: bool, n_max: int) -> np.ndarray:
     return r
 
 
+#: a dimer contact is a double impact while its inner flight is within this fraction of T_xi
+#: (the criterion of check restitution, its default ``double_band``)
+DOUBLE_BAND = 0.25
+
+
+def _double_impacts(t_impacts: np.ndarray, mu: float) -> int:
+    """Leading contacts m = 1, 2, ... that are double impacts: inner flight tau_{2m-1} within DOUBLE_BAND of
+    T_xi = pi/sqrt(1 - mu^2) (eq. char-times); beyond them f_n = tau_{2n} is not a macroscopic flight."""
+    tau = np.diff(np.concatenate([[0.0], t_impacts]))
+    inner = tau[1::2] / (math.pi / math.sqrt(1.0 - mu * mu)) if mu < 1.0 else np.zeros(0)
+    ok = np.abs(inner - 1.0) <= DOUBLE_BAND
+    return int(ok.size if ok.all() else np.argmin(ok))
+
+
 def _thin(x: np.ndarray, y: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
     if x.size <= k:
         return x, y
@@ -109,6 +123,7 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
     curve_t = np.full(shape + (kc + 200,), np.nan)
     curve_e = np.full(shape + (kc + 200,), np.nan)
     end_kind = np.empty(shape, dtype=object)
+    doubles = np.zeros(len(drops), dtype=np.int64)
     rigid.warm_up()
     for i, name in enumerate(drops):
         d = spec["drops"][name]
@@ -124,6 +139,7 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
                 e = tr.energy_excess[imp] / e0
                 paired = True
                 end_kind[i, j] = "none (no collapse; E -> E_m as t -> inf)"
+                doubles[i] = _double_impacts(t, m)
             else:
                 run, setting = dict((mm[0], (mm[1], mm[2])) for mm in RIGID_MODELS)[model]
                 res = run(p, ini, setting, max_events=max_events, t_max=t_max)
@@ -173,6 +189,9 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
             "curve_t": (dm + ("k",), curve_t, {"long_name": "impact times (thinned)", "units": "sqrt(m/2k)"}),
             "curve_energy": (dm + ("k",), curve_e, {"long_name": "energy above rest / its initial value, just after "
                                                                  "each impact (thinned)", **u}),
+            "double_impacts": (("case",), doubles, {
+                "long_name": "leading dimer contacts that are double impacts (inner flight within "
+                             f"{DOUBLE_BAND:g} T_xi of T_xi): the dimer's r_n is meaningful for n < this", **u}),
             "gamma": (("case",), [float(spec["drops"][k]["gamma"]) for k in drops], {"long_name": "gamma", **u}),
             "mu": (("case",), [float(spec["drops"][k]["mu"]) for k in drops], {"long_name": "mu", **u}),
             "psi0": (("case",), [float(spec["drops"][k]["psi0"]) for k in drops],
@@ -185,19 +204,26 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
 
 
 def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Energy above rest against t (left) and r_n against the macroscopic bounce (right), one row per drop."""
-    from ..figures.common import WIDTH, label_time, plt, save
+    """Energy above rest against t (left) and r_n against the macroscopic bounce (right), one row per drop.
+
+    The dimer's r_n = f_{n+1}/f_n (f_n = tau_{2n}) is drawn only while its contacts are double
+    impacts (n < ``double_impacts``): beyond, tau_{2n} is no longer a macroscopic flight and the
+    ratio means nothing.  The r_n axis spans every value drawn (nothing is clipped)."""
+    from ..figures.common import WIDTH, label_time, plt, save, tex_num
 
     drops = list(ds["case"].values)
-    fig, axes = plt.subplots(len(drops), 2, figsize=(WIDTH, 2.5 * len(drops)), squeeze=False)
+    fig, axes = plt.subplots(len(drops), 2, figsize=(WIDTH, 2.7 * len(drops)), squeeze=False)
     styles = {"dimer": dict(color="k", lw=1.2)}
     labels = {"dimer": "two-mass ball (exact)", "rigid-constant-r": r"rigid, $r=e^{-\mu T_\xi}$",
               "rigid-fifth": r"rigid, $r=1-(u/U)^{1/5}$", "rigid-our-r": "rigid, eq. our-r",
               "rigid-our-r/dimer-flight": r"eq. our-r, $\tau=u/\gamma$ below $u_c$",
               "time-of-contact": r"time of contact, $t_c=T_\xi$"}
+    bounce = ds["bounce"].values
     for i, drop in enumerate(drops):
         d = ds.sel(case=drop)
         a1, a2 = axes[i]
+        paired = int(d["double_impacts"])
+        drawn = []
         for j, model in enumerate(ds["model"].values):
             st = dict(styles.get(model, dict(color=f"C{j - 1}", lw=0.8)))
             st["zorder"] = 3 if model == "dimer" else 2
@@ -208,8 +234,17 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
             if np.isfinite(te):
                 a1.axvline(te, ls=":", lw=0.8, color=st["color"])
             r = d["r_n"].sel(model=model).values
-            a2.plot(ds["bounce"].values, r, "o" if model == "dimer" else "-", ms=2.0, color=st["color"],
+            keep = np.isfinite(r) & ((bounce < paired) if model == "dimer" else True)
+            a2.plot(bounce[keep], r[keep], "o" if model == "dimer" else "-", ms=2.5, color=st["color"],
                     lw=st["lw"], zorder=st["zorder"])
+            drawn.append(r[keep])
+        drawn = np.concatenate(drawn)
+        if drawn.size:
+            pad = 0.05 * max(np.ptp(drawn), 0.05)
+            a2.set_ylim(drawn.min() - pad, drawn.max() + pad)
+        a2.axvline(paired - 0.5, color="k", lw=0.6, ls="--")
+        a2.text(paired - 0.5, 0.03, " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
+                transform=a2.get_xaxis_transform(), fontsize=6, va="bottom")
         ends = np.concatenate([d["t_model_end"].values, d["t_rest"].values])
         ends = ends[np.isfinite(ends)]
         a1.set_xlim(0.0, 1.25 * ends.max() if ends.size else None)
@@ -217,11 +252,11 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.set_ylim(1e-12, 3)
         label_time(a1)
         a1.set_ylabel(r"$(E-E_{\rm rest})/(E_0-E_{\rm rest})$")
-        a1.set_title(r"$\gamma=%g$, $\mu=%g$, $\psi(0)=%g$: energy (dotted: collapse/contact)"
-                     % (float(d["gamma"]), float(d["mu"]), float(d["psi0"])), fontsize=7)
+        a1.set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$: energy (dotted: collapse/contact)"
+                     % (tex_num(float(d["gamma"])), tex_num(float(d["mu"])), tex_num(float(d["psi0"]))), fontsize=7)
+        a2.set_xscale("log")
         a2.set_xlabel(r"macroscopic bounce $n$")
         a2.set_ylabel(r"$r_n$")
-        a2.set_ylim(0.6, 1.1)
         a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots); rigid $u_{n+1}/u_n$", fontsize=7)
     handles, labs = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labs, loc="lower center", ncol=3, fontsize=7, frameon=False)
