@@ -243,8 +243,8 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
             pad = 0.05 * max(np.ptp(drawn), 0.05)
             a2.set_ylim(drawn.min() - pad, drawn.max() + pad)
         a2.axvline(paired - 0.5, color="k", lw=0.6, ls="--")
-        a2.text(paired - 0.5, 0.03, " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
-                transform=a2.get_xaxis_transform(), fontsize=6, va="bottom")
+        a2.text(paired - 0.5, 0.4, " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
+                transform=a2.get_xaxis_transform(), fontsize=6, va="center")
         ends = np.concatenate([d["t_model_end"].values, d["t_rest"].values])
         ends = ends[np.isfinite(ends)]
         a1.set_xlim(0.0, 1.25 * ends.max() if ends.size else None)
@@ -252,12 +252,13 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.set_ylim(1e-12, 3)
         label_time(a1)
         a1.set_ylabel(r"$(E-E_{\rm rest})/(E_0-E_{\rm rest})$")
-        a1.set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$: energy (dotted: collapse/contact)"
+        a1.set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$:" "\n" r"energy (dotted: collapse/contact)"
                      % (tex_num(float(d["gamma"])), tex_num(float(d["mu"])), tex_num(float(d["psi0"]))), fontsize=7)
         a2.set_xscale("log")
         a2.set_xlabel(r"macroscopic bounce $n$")
         a2.set_ylabel(r"$r_n$")
-        a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots); rigid $u_{n+1}/u_n$", fontsize=7)
+        a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots);" "\n" r"rigid models $u_{n+1}/u_n$ (lines)",
+                     fontsize=7)
     handles, labs = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labs, loc="lower center", ncol=3, fontsize=7, frameon=False)
     fig.suptitle("Rigid-ball restitution models against the two-mass ball (time in $\\sqrt{m/2k}$; $E_{\\rm rest}$: "
