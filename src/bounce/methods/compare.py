@@ -616,9 +616,13 @@ def _setting_text(setting_json: str) -> str:
     """A run's settings for a label: {"rtol": 1e-06, "solver": "RK45"} -> "RK45, rtol=1e-06"."""
     setting = json.loads(setting_json)
     words = [str(v) for v in setting.values() if isinstance(v, str)]
-    words += [f"{k}={_number(v):.0e}".replace("e-0", "e-").replace("e+0", "e") for k, v in setting.items()
-              if not isinstance(v, str)]
+    words += [f"{k}={_short(_number(v))}" for k, v in setting.items() if not isinstance(v, str)]
     return ", ".join(words)
+
+
+def _short(v: float) -> str:
+    """0.5 -> 0.5, 1e-06 -> 1e-6, 10000.0 -> 1e4."""
+    return f"{v:g}" if 1e-2 <= abs(v) < 1e3 else f"{v:.0e}".replace("e-0", "e-").replace("e+0", "e").replace("e+", "e")
 
 
 def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
