@@ -586,7 +586,7 @@ def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
     d = axes.flat[3]
     if floor.size:
         d.axhline(float(np.median(floor)), color="0.4", ls=":", lw=1.0)
-        d.text(0.02, 0.03, "dotted: chaos floor, the spread of\n$n\\tau_n\\mu/3$ among exact runs from\n"
+        d.text(0.07, 0.03, "dotted: chaos floor, the spread of\n$n\\tau_n\\mu/3$ among exact runs from\n"
                r"initial states perturbed by $%s$" "\n(median over the $n$ reached)"
                % tex_num(asym.get("spread_eps", 1e-9)), transform=d.transAxes, fontsize=5.5, va="bottom")
     d.text(0.98, 0.97, "hollow: the long run stopped early\n(error at the last $n$ it reached)",
