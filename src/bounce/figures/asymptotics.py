@@ -44,7 +44,7 @@ def energy_decay(datasets, spec, outputs) -> None:
                    % (tex_num(mu), slope, -3 * kappa / mu))
     axes[0].set_ylabel(r"$E - E_m$")
     a_n.set_xlabel(r"impact index $n$")
-    a_n.set_title("(%s) both, against $n$; slopes fitted\nfor $n\geq n_{max}/100$" % "abc"[len(datasets)], fontsize=7)
+    a_n.set_title("(%s) both, against $n$; slopes fitted\nfor $n\\geq n_{max}/100$" % "abc"[len(datasets)], fontsize=7)
     fig.legend(*a_n.get_legend_handles_labels(), loc="lower right", fontsize=6.5, frameon=False, ncol=2,
                title="(c), slope of $\\ln(E-E_m)$ against $\\ln n$:", title_fontsize=6.5)
     fig.suptitle(r"Energy decay to $E_m=-\gamma^2/2$ (Theorem static-equilibrium; rates beyond the paper): "

@@ -46,6 +46,9 @@ def rest_coeff(datasets, spec, outputs) -> None:
     tau = ds["tau"].values
     mu = float(ds.attrs["mu"])
     T_xi = np.pi / np.sqrt(1.0 - mu**2)
+    if restitution.attrs.get("rest_scene") != ds.attrs.get("scene"):
+        raise ValueError(f"check restitution read scene {restitution.attrs.get('rest_scene')!r}, "
+                         f"the figure draws {ds.attrs.get('scene')!r}")
     paired = int(restitution.attrs["double_run"])  # contacts 1..paired are double impacts
     h64 = _horizon_impacts(horizon, ds)
     n_h = (h64 - 3) // 2  # last n whose r_n reads impacts within the horizon only
