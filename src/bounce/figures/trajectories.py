@@ -102,7 +102,7 @@ def sticky_traj(datasets, spec, outputs) -> None:
         axes[0].annotate(r"$t_c=%.4f$" % t_c, xy=(t_c, 0.5), xycoords=("data", "axes fraction"),
                          xytext=(4, 0), textcoords="offset points", color="C3", fontsize=7)
     label_time(axes[-1])
-    handles, labels = {}, []
+    handles = {}
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(lab, h)
