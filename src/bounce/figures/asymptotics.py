@@ -20,7 +20,7 @@ def energy_decay(datasets, spec, outputs) -> None:
     with t_n ~ (3/mu) ln n (Theorem main_thm) this is E - E_m ~ n^{-3 kappa/mu}, the slope
     expected in the last panel, which prints the slope fitted on the last two decades of n.
     """
-    from ..checks.equilibrium import rates_theory
+    from ..theory import equilibrium_rates
 
     fig, axes = plt.subplots(1, len(datasets) + 1, figsize=(WIDTH, 2.9))
     a_n = axes[-1]
@@ -29,7 +29,7 @@ def energy_decay(datasets, spec, outputs) -> None:
         n = ds["event"].values + 1
         t = ds["t"].values - ds["t"].values[0]
         mu = float(ds.attrs["mu"])
-        kappa = rates_theory(mu)["energy"]
+        kappa = equilibrium_rates(mu)["energy"]
         ax.semilogy(t, e, color=f"C{i}", lw=1.0)
         late = n >= n[-1] / 100
         t0, e0 = t[late][0], e[late][0]
