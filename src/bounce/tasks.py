@@ -88,7 +88,14 @@ def _sweep_shard(args) -> None:
     from .sweeps import registry
     from .sweeps.base import run_shard
 
-    write_netcdf(run_shard(registry()[args.name], args.spec, args.shard, args.workers), args.out[0])
+    import time
+
+    start = time.perf_counter()
+    ds = run_shard(registry()[args.name], args.spec, args.shard, args.workers)
+    write_netcdf(ds, args.out[0])
+    seconds = time.perf_counter() - start
+    print(f"{args.name} shard {args.shard}: {ds.sizes['item']} items in {seconds:.1f} s on {args.workers} "
+          f"workers ({ds.sizes['item'] / seconds / args.workers:.3g} items/s/core, start-up included)", file=sys.stderr)
 
 
 def _sweep_gather(args) -> None:

@@ -45,6 +45,7 @@ rule sweep_shard:
         shard=r"\d+",
         shards=r"\d+",
     shell:
+        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "  # parallel over items, not in BLAS
         "python -m bounce.tasks sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
         "--workers {threads} --out {output} > {log} 2>&1"
 

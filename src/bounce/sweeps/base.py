@@ -89,8 +89,9 @@ def _compute_batch(sweep_name: str, spec: dict, inputs: dict) -> dict:
 def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, progress: bool | None = None) -> dict:
     """``sweep.compute`` over ``items`` on ``workers`` processes, in batches, with a progress bar.
 
-    The batches run in spawned processes with one BLAS thread each (:data:`WORKER_ENV`)
-    whatever ``workers`` is, so the numbers do not depend on it.  ``progress``: a tqdm bar
+    The first batch runs in this process (compiling numba's kernels into its on-disk cache
+    once), the others in spawned processes with one BLAS thread each (:data:`WORKER_ENV`);
+    an item's numbers do not depend on which process ran it (tests/test_sweeps.py).  ``progress``: a tqdm bar
     on stderr (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
     """
     from tqdm import tqdm
@@ -106,13 +107,18 @@ def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, pro
     saved = {k: os.environ.get(k) for k in WORKER_ENV}
     os.environ.update(WORKER_ENV)  # inherited by the spawned workers at start-up
     try:
-        with ProcessPoolExecutor(max_workers=max(workers, 1), mp_context=multiprocessing.get_context("spawn")) as pool:
-            futures = {pool.submit(_compute_batch, sweep.name, spec, _slice(inputs, lo, hi)): i
-                       for i, (lo, hi) in enumerate(bounds)}
-            for future in as_completed(futures):
-                i = futures[future]
-                results[i] = future.result()
-                bar.update(bounds[i][1] - bounds[i][0])
+        # the first batch here: it fills numba's on-disk cache once, before the workers start and load it
+        results[0] = sweep.compute(spec, _slice(inputs, *bounds[0]))
+        bar.update(bounds[0][1] - bounds[0][0])
+        if len(bounds) > 1:
+            with ProcessPoolExecutor(max_workers=max(workers, 1),
+                                     mp_context=multiprocessing.get_context("spawn")) as pool:
+                futures = {pool.submit(_compute_batch, sweep.name, spec, _slice(inputs, lo, hi)): i
+                           for i, (lo, hi) in enumerate(bounds) if i > 0}
+                for future in as_completed(futures):
+                    i = futures[future]
+                    results[i] = future.result()
+                    bar.update(bounds[i][1] - bounds[i][0])
     finally:
         bar.close()
         for k, v in saved.items():
