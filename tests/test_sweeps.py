@@ -12,25 +12,37 @@ import xarray as xr
 import yaml
 
 from bounce.io import read_dataset
+from bounce.config import validated
 from bounce.model import InputError
+from snakemake.utils import update_config
 from bounce.sweeps import registry
 from bounce.sweeps.base import gather, run_shard, shard_items
 from bounce.tasks import main as task
 
 ROOT = Path(__file__).resolve().parents[1]
-MC = {"shards": 1, "seed": 5, "n_samples": 24, "events": 60, "gamma": [1e-4, 0.2], "mu_under": [1e-3, 0.95],
-      "mu_over": [1.05, 5.0], "energy_over_gamma2": [0.1, 1000.0], "batch": 5}
-ATLAS = {"shards": 1, "mu": {"min": 0.3, "max": 2.0, "n": 2}, "gamma": {"min": 1e-3, "max": 1e-3, "n": 1},
-         "psi0": 0.25, "events": 20000, "transient": 0.1, "fit": {"n_min": 1000}, "batch": 1}
+FULL = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def _validated(name: str, spec: dict) -> dict:
+    """``spec`` as the pipeline hands it to the sweep: checked by the config contract, schema defaults filled."""
+    cfg = copy.deepcopy(FULL)
+    cfg["sweeps"][name] = spec
+    return validated(cfg)["sweeps"][name]
+
+
+MC = _validated("contact-monte-carlo", {
+    "shards": 1, "seed": 5, "n_samples": 24, "events": 60, "gamma": [1e-4, 0.2], "mu_under": [1e-3, 0.95],
+    "mu_over": [1.05, 5.0], "energy_over_gamma2": [0.1, 1000.0], "batch": 5})
+ATLAS = _validated("asymptotic-atlas", {
+    "shards": 1, "mu": {"min": 0.3, "max": 2.0, "n": 2}, "gamma": {"min": 1e-3, "max": 1e-3, "n": 1},
+    "psi0": 0.25, "events": 20000, "transient": 0.1, "fit": {"n_min": 1000}, "batch": 1})
 
 
 def _ci_spec(name: str) -> dict:
-    """The sweep's slice of config.yaml merged with config/ci.yaml (as snakemake merges them)."""
-    full = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["sweeps"][name]
-    ci = yaml.safe_load((ROOT / "config" / "ci.yaml").read_text())["sweeps"][name]
-    spec = copy.deepcopy(full)
-    for k, v in ci.items():
-        spec[k] = {**spec[k], **v} if isinstance(v, dict) and isinstance(spec.get(k), dict) else v
+    """The sweep's slice of config.yaml merged with config/ci.yaml (as snakemake merges them), validated."""
+    cfg = copy.deepcopy(FULL)
+    update_config(cfg, yaml.safe_load((ROOT / "config" / "ci.yaml").read_text()))
+    spec = validated(cfg)["sweeps"][name]
     spec.pop("threads", None)
     return spec
 

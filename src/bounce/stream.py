@@ -30,15 +30,17 @@ from pathlib import Path
 import numpy as np
 
 from .events import CARRY_SIZE, KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES, run_events
-from .model import InputError, Parameters
+from .model import InputError, Parameters, check_supported
 from .oscillator import make_oscillator
-from .simulate import SQRT2, Trajectory, _positive_int
+from .simulate import MAX_EVENTS, SQRT2, Trajectory, _positive_int
 
 #: one-shot path: 6 float64 records + int8 kind (simulate), 4 derived float64 arrays (netCDF write)
 BYTES_PER_EVENT = 6 * 8 + 1 + 4 * 8
 #: streaming: the chunk buffers (6 float64 + int8) and the derived arrays of one chunk (4 float64)
 BYTES_PER_EVENT_STREAM = BYTES_PER_EVENT + 24
 DEFAULT_CHUNK = 1 << 20
+#: most events a streamed run takes: memory is bounded by the chunk, time is the user's (1e12 ~ a day)
+MAX_STREAM_EVENTS = 10**12
 BASELINE_BYTES = 250 * 2**20  # interpreter, numpy, numba, xarray, netCDF4
 
 
@@ -94,11 +96,14 @@ def chunks(params: Parameters, initial, max_events: int, t_max: float = math.inf
     in place.  ``carry`` and ``done`` resume an earlier run after its ``done`` events.  ``stop``
     is a STOP_NAMES entry; the generator ends after the chunk where the run stops.
     """
-    max_events = _positive_int("events", max_events)
-    chunk = _positive_int("chunk", chunk)
+    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
+    chunk = _positive_int("chunk", chunk, MAX_EVENTS)
+    if params.spring.name != "linear":
+        raise InputError(f"chunked runs drive the linear spring's event loop; got the {params.spring.name} spring")
+    start = initial.deviations(params)
+    check_supported(params, start)
     params_arr, coefs = make_oscillator(params.mu)
     sparams, scoefs = make_oscillator(params.mu / SQRT2)
-    start = initial.deviations(params)
     if carry is None:
         carry = np.zeros(CARRY_SIZE)
     buf = _Buffers(min(chunk, max_events - done) if done < max_events and out is None else 0)
@@ -137,7 +142,7 @@ def _bar(total: int, progress: bool | None, initial: int = 0):
 def simulate_chunked(params: Parameters, initial, max_events: int = 1000, t_max: float = math.inf,
                      energy_stop: float = 0.0, chunk: int = DEFAULT_CHUNK, progress: bool | None = None) -> Trajectory:
     """:func:`bounce.simulate.simulate` in chunks (bit for bit the same Trajectory), with a progress bar."""
-    max_events = _positive_int("events", max_events)
+    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
     out = [np.empty(max_events) for _ in range(6)]
     kind = np.empty(max_events, dtype=np.int8)
     n, stop, t_end = 0, STOP_NAMES[STOP_EVENTS], 0.0
@@ -207,8 +212,8 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
 
     from .io import EVENT_VARIABLES
 
-    max_events = _positive_int("events", max_events)
-    chunk = _positive_int("chunk", chunk)
+    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
+    chunk = _positive_int("chunk", chunk, MAX_EVENTS)
     out = Path(out)
     part = partial_path(out)
     settings = {"max_events": max_events, "t_max": float(t_max), "energy_stop": float(energy_stop)}

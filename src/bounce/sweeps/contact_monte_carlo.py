@@ -20,7 +20,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..checks.nongeneric import _contact_scales, sample_initial
+from ..anomalies import _contact_scales, sample_initial
 from ..events import KIND_NAMES
 from ..model import Deviations, Parameters
 from ..oscillator import make_oscillator
