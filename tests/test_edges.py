@@ -131,3 +131,30 @@ def test_event_times_are_rounded_sums_of_durations():
     sums = [math.fsum(tr.tau[: i + 1]) for i in range(0, len(tr), 97)]
     assert np.array_equal(tr.t[::97], np.array(sums))
     assert "half an ulp" in EVENT_VARIABLES["t"][1]
+
+
+def test_undamped_energy_drift_is_bounded():
+    """mu = 0, psi(0) = 6, gamma = 0.01: E - E_m is conserved by the dynamics; the recorded states
+    drift by rounding.  Measured (tests of issue 12, 2e4 impacts against the mpmath flight from each
+    recorded state): +0.03 eps E per impact of bias, entirely from rounding the spring state in the
+    flight map (the contact-time residual contributes nothing significant, c^2 + S^2 - 1 has no
+    bias), on top of an unbiased random walk of ~1 eps E per impact.  Asserted bound, with the
+    energy of the float states evaluated exactly: |E_n - E_0| <= eps E_0 (0.1 n + 4 sqrt(n)),
+    i.e. three times the measured bias plus four standard deviations of the walk."""
+    from fractions import Fraction
+
+    p = Parameters(0.01, 0.0)
+    start = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
+    n = 50_000
+    tr = simulate(p, start, max_events=n)
+    assert tr.stop_reason == "max_events" and set(tr.kind_names) == {"impact"}
+
+    def exact(u, a, eta, x=0.0):
+        u, a, eta, x = (Fraction(float(v)) for v in (u, a, eta, x))
+        return (a * a + (u + a) ** 2 + eta * eta) / 2 + Fraction(0.01) * x
+
+    d = start.deviations(p)
+    e0 = exact(d.xdot, d.xidot, d.eta, d.x)
+    for k in (n // 10, n // 2, n - 1):
+        drift = abs(float(exact(tr.xdot[k], tr.xidot[k], tr.eta[k]) - e0))
+        assert drift <= EPS * float(e0) * (0.1 * (k + 1) + 4.0 * math.sqrt(k + 1)), (k, drift / (EPS * float(e0)))
