@@ -94,7 +94,7 @@ def _energy(gamma, d):
         (0.01, 0.01, State(6.0, -1e-308, 7.0, 0.0), 100),  # subnormal speed: Newton window overflowed
         (0.01, 5e7, State(6.0, 0.0, 7.0, 0.0), 100),  # series coefficients overflowed (rho^k)
         (0.01, 1e8, State(6.0, 0.0, 7.0, 0.0), 100),
-        (1e-12, 0.0, State(6.0, 0.0, 7.0, 0.0), 3),  # ~5e5 spring periods per flight
+        (1e-12, 0.0, Deviations(6.0, 0.0, 0.0, 2e-5), 3),  # ~1e6 spring periods per flight
     ],
     ids=["mu0-rest-tangent", "xdot-subnormal", "mu5e7", "mu1e8", "gamma1e-12"],
 )
@@ -158,3 +158,30 @@ def test_undamped_energy_drift_is_bounded():
     for k in (n // 10, n // 2, n - 1):
         drift = abs(float(exact(tr.xdot[k], tr.xidot[k], tr.eta[k]) - e0))
         assert drift <= EPS * float(e0) * (0.1 * (k + 1) + 4.0 * math.sqrt(k + 1)), (k, drift / (EPS * float(e0)))
+
+
+@pytest.mark.parametrize("gamma, mu", [(0.01, 1e3), (0.01, 1e6), (0.3, 1e6)])
+def test_sticky_start_strong_overdamping(gamma, mu):
+    """eq. sticky-ic with eps = 0 at mu up to 1e6 (which used to fail to converge): sticky_start at
+    t = 0, then the reference's detach (1e-12 relative, as in test_sticky) or its proof that the
+    sticky phase never ends."""
+    p = Parameters(gamma, mu)
+    s0 = State.sticky_ic(p, eps=0.0)
+    tr = simulate(p, s0, max_events=3)
+    assert tr.kind[0] == 2 and tr.t[0] == 0.0, tr.kind_names
+    td, _ = R.sticky_detach(gamma, mu, *R.rest_state(gamma, s0.deviations(p)))
+    if td is None:
+        assert tr.stop_reason == "sticky_forever" and len(tr) == 1, (tr.kind_names, tr.t)
+    else:
+        assert len(tr) >= 2 and tr.kind[1] == 3, (tr.kind_names, tr.stop_reason)
+        assert abs(tr.t[1] - float(td)) <= 1e-12 * float(td)
+
+
+def test_flights_beyond_the_root_finder_are_refused_up_front():
+    """gamma = 1e-12, mu = 0, psi(0) = 6 with the spring excited (xi(0) = 0.1): ~1e10 spring
+    oscillations per flight, which used to exhaust the step cap ("please report").  Refused before
+    simulating, naming the initial state and the supported range (longest flight <= 1e8)."""
+    from bounce.model import InputError
+
+    with pytest.raises(InputError, match=r"initial state.*supported range: flights <= 1e\+08"):
+        simulate(Parameters(1e-12, 0.0), State.from_psi_xi(6.0, 0.0, 0.1, 0.0), max_events=3)
