@@ -322,7 +322,8 @@ def test_out_refuses_what_is_not_a_regular_file(kind, tmp_path, capsys):
         (tmp_path / "real.nc").write_bytes(b"keep")
         target.symlink_to(tmp_path / "real.nc")
     before = sorted(p.name for p in tmp_path.iterdir())
-    out = {"dir_dot": str(tmp_path / "nosuch") + "/.", "dir_slash": str(tmp_path / "nosuch") + "/"}.get(kind, str(target))
+    spelled = {"dir_dot": str(tmp_path / "nosuch") + "/.", "dir_slash": str(tmp_path / "nosuch") + "/"}
+    out = spelled.get(kind, str(target))
     code, _, err = _run(["simulate", *GOOD, "--events", "3", "--out", out], capsys)
     _check_error(code, err, "--out")
     assert sorted(p.name for p in tmp_path.iterdir()) == before

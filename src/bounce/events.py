@@ -38,8 +38,8 @@ coincide, tau stays exact): the netCDF attribute of t says so.
 
 Energy balance without damping (mu = 0): the dynamics conserves E - E_m; the
 recorded states carry rounding, an unbiased walk of ~1 eps E per impact plus a
-measured bias of +0.03 eps E per impact (psi(0) = 6, gamma = 0.01: +8e-14 after
-2e5 impacts, i.e. ~4e-12 after 1e7), traced against mpmath to the rounding of
+measured bias of +0.03 eps E per impact (psi(0) = 6, gamma = 0.01: +8.3e-13 after
+2e6 impacts, growing linearly, i.e. ~4e-12 after 1e7), traced against mpmath to the rounding of
 the spring state in the flight map, not to the contact time (whose residual has
 no significant bias) nor to c^2 + S^2 (no bias).  tests/test_edges.py bounds it.
 """
