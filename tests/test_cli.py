@@ -322,7 +322,8 @@ def test_out_refuses_what_is_not_a_regular_file(kind, tmp_path, capsys):
         (tmp_path / "real.nc").write_bytes(b"keep")
         target.symlink_to(tmp_path / "real.nc")
     before = sorted(p.name for p in tmp_path.iterdir())
-    out = {"dir_dot": str(tmp_path / "nosuch") + "/.", "dir_slash": str(tmp_path / "nosuch") + "/"}.get(kind, str(target))
+    spelled = {"dir_dot": str(tmp_path / "nosuch") + "/.", "dir_slash": str(tmp_path / "nosuch") + "/"}
+    out = spelled.get(kind, str(target))
     code, _, err = _run(["simulate", *GOOD, "--events", "3", "--out", out], capsys)
     _check_error(code, err, "--out")
     assert sorted(p.name for p in tmp_path.iterdir()) == before
@@ -425,3 +426,15 @@ def test_sigkill_leftover_removed_by_next_run(tmp_path, capsys):
     assert main(["simulate", *GOOD, "--events", "3", "--out", str(out)]) == 0
     capsys.readouterr()
     assert [p.name for p in tmp_path.iterdir()] == ["run.nc"]
+
+
+def test_state_below_resolution_gets_a_rest_verdict(tmp_path, capsys):
+    """--psi0 1e-300 --psidot0 0 --xi0 0 --xidot0 0 --events 1e6 used to exit 0 with 1e6 grazings all
+    at t = 1.4e-149; the drop of 1e-300 is below the resolution of heights: one sticky_start, then the
+    sticky phase is proved never to end."""
+    path = tmp_path / "run.nc"
+    code, out, err = _run(["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "1e-300", "--psidot0", "0",
+                           "--xi0", "0", "--xidot0", "0", "--events", "1e6", "--out", str(path)], capsys)
+    assert code == 0 and err == "" and "sticky_forever" in out
+    ds = bio.read_dataset(path)
+    assert ds.sizes["event"] == 1 and int(ds.kind.values[0]) == 2

@@ -41,7 +41,7 @@ SETTINGS = settings(deadline=None, max_examples=MAX_EXAMPLES, database=None,
 OUTCOMES: Counter = Counter()
 
 #: every parameter a refusal may name
-NAMES = ("gamma", "mu", "x0", "xdot0", "y0", "ydot0", "psi0", "psidot0", "xi0", "xidot0", "xidot0", "eta0",
+NAMES = ("gamma", "mu", "x0", "xdot0", "y0", "ydot0", "psi0", "psidot0", "xi0", "xidot0", "eta0",
          "events", "t-max", "t_max", "energy-stop", "energy_stop", "dt-sample", "initial state")
 
 SPECIAL = [math.nan, math.inf, -math.inf, 0.0, -0.0, 5e-324, -5e-324, 1e-320, 2.2250738585072014e-308, 1e-300,

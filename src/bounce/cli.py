@@ -40,7 +40,9 @@ import numpy as np
 from . import __version__
 from .events import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
-from .model import InputError, Parameters, State, check_physical, check_supported
+from .model import (
+    FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,
+)
 from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
 from .springs import spring_from_spec
 from .stream import DEFAULT_CHUNK, check_memory, progress_enabled, simulate_chunked, stream_to_netcdf
@@ -136,6 +138,11 @@ def build_parser() -> argparse.ArgumentParser:
         description="Simulate from a complete initial state, given either as --x0 --xdot0 --y0 --ydot0 or as "
                     "--psi0 --psidot0 --xi0 --xidot0, and write a CF netCDF file. Dimensionless units: lengths "
                     "in the spring rest length L, times in sqrt(m/2k).",
+        epilog=f"Supported: gamma in [{GAMMA_MIN:g}, {GAMMA_MAX:g}), mu in [0, {MU_MAX:g}], y0 > x0 >= 0, and an "
+               f"initial energy whose longest possible flight is at most {FLIGHT_MAX:g} time units; other inputs are "
+               "refused with the range. "
+               "Event times t are correctly rounded sums of the exact durations tau: phases shorter than half "
+               "an ulp of t leave t unchanged (equal consecutive times), tau stays exact.",
     )
     p.add_argument("--gamma", required=True, type=_number("(0, inf)"),
                    help="g m / (2 L k), > 0")

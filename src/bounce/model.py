@@ -170,7 +170,7 @@ class Deviations:
 
 #: gamma < 1/2: the static equilibrium y_eq = 1 - 2 gamma of the upper mass lies above the floor.
 GAMMA_MAX = 0.5
-#: smallest gamma simulated: below it even a drop of one rest length spans more than ~1e6 spring periods.
+#: smallest gamma simulated: a drop of one rest length lasts sqrt(2/gamma) = 1.4e6 time units there.
 GAMMA_MIN = 1e-12
 #: largest damping simulated (the stiff oscillator's rates 1/(2 mu) and 2 mu stay 1e16 apart at most).
 MU_MAX = 1e8
@@ -196,8 +196,9 @@ def flight_bound(gamma: float, energy_excess: float) -> float:
     """Upper bound on every flight's duration from E - E_m (energy never increases).
 
     In flight psi'' = -gamma and |psi'| <= V = sqrt(2 (E - E_m)), the spring's deviation
-    |eta| <= V and gamma x <= E - E_m, so x = psi - xi > 0 cannot last beyond the root of
-    V T - gamma T^2/2 + x0 + 2 V = 0: T <= (V + sqrt(V^2 + 2 gamma x0 + 4 gamma V))/gamma.
+    |eta| <= V and gamma x0 <= E - E_m, so x = psi - xi > 0 cannot last beyond the root of
+    V T - gamma T^2/2 + x0 + 2 V = 0: with 2 gamma x0 <= V^2,
+    T <= (V + sqrt(2 V^2 + 4 gamma V))/gamma.
     """
     v = math.sqrt(2.0 * energy_excess)
     return (v + math.sqrt(2.0 * v * v + 4.0 * gamma * v)) / gamma
@@ -219,8 +220,8 @@ def check_supported(params: Parameters, start: "Deviations") -> None:
     if not gamma >= GAMMA_MIN:
         raise InputError(
             f"gamma must be >= {GAMMA_MIN:g} (supported range: [{GAMMA_MIN:g}, {GAMMA_MAX})): below it a drop of "
-            f"one rest length lasts more than ~1e6 spring periods, each of which the root finder resolves), "
-            f"got {gamma!r}"
+            f"one rest length lasts sqrt(2/gamma) > 1.4e6 time units, over 2e5 spring periods, each of which the "
+            f"root finder resolves), got {gamma!r}"
         )
     if not mu <= MU_MAX:
         raise InputError(
@@ -229,12 +230,13 @@ def check_supported(params: Parameters, start: "Deviations") -> None:
             f"high-precision reference), got {mu!r}"
         )
     psidot = start.xdot + start.xidot
-    excess = 0.5 * (start.xidot * start.xidot + psidot * psidot + start.eta * start.eta) + gamma * start.x  # inf, no raise
+    # products, not **: a huge state gives inf (refused below) instead of raising OverflowError
+    excess = 0.5 * (start.xidot * start.xidot + psidot * psidot + start.eta * start.eta) + gamma * start.x
     longest = flight_bound(gamma, excess) if math.isfinite(excess) else math.inf
     if not longest <= FLIGHT_MAX:
         raise InputError(
-            f"initial state (x0 xdot0 y0 ydot0, or psi0 psidot0 xi0 xidot0): its energy E - E_m = {excess:.3g} allows flights up to "
-            f"{longest:.3g} time units long at gamma = {gamma!r} (supported range: flights <= {FLIGHT_MAX:g}, "
-            f"about E - E_m <= (gamma {FLIGHT_MAX:g})^2/12 = {(FLIGHT_MAX * gamma) ** 2 / 12:.3g}): the root "
-            f"finder resolves every spring oscillation of a flight"
+            f"initial state (x0 xdot0 y0 ydot0, or psi0 psidot0 xi0 xidot0): its energy E - E_m = {excess:.3g} "
+            f"allows flights up to {longest:.3g} time units long at gamma = {gamma!r} (supported range: flights "
+            f"<= {FLIGHT_MAX:g}, about E - E_m <= (gamma {FLIGHT_MAX:g})^2/12 = {(FLIGHT_MAX * gamma) ** 2 / 12:.3g}): "
+            f"the root finder resolves every spring oscillation of a flight"
         )

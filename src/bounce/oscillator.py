@@ -39,9 +39,11 @@ e.g. (over-damped, slow and fast rates ``lam_slow = 1/(mu + kappa)``,
     sh     = -expm1(-2 kappa t) / (2 kappa) = e^{-kappa t} sinh(kappa t)/kappa,
 
 sums of terms whose cancellation is bounded by a factor ~2 for rho t > SERIES_Q,
-so the small parts keep a few ulps relative to themselves for every mu >= 0
-(checked against mpmath for mu up to 1e8 in tests/test_edges.py).  Nothing
-overflows for long flights and everything is continuous across mu = 1.
+so the small parts keep a few ulps relative to themselves for every mu > 1
+(checked against mpmath for mu up to 1e8 in tests/test_edges.py).  For mu <= 1
+(rho = 1, t > 2, c decaying at rate >= mu or oscillating) 1 - c is formed by
+subtraction to a few ulps of 1, which is what eq. (F) needs.  Nothing overflows
+for long flights and everything is continuous across mu = 1.
 
 An oscillator is a pair of arrays ``(params, coefs)`` made once per damping by
 :func:`make_oscillator`; the numba kernels take the two arrays.
@@ -174,24 +176,26 @@ def _series_parts(t, rho, sigma, coefs):
 def _closed_form(t, params):
     """(1-c, t-S, 1-S', c, S, S') from the closed forms, for rho t > SERIES_Q.
 
-    Each small part is a sum of terms that cancel at most by a factor ~2 there
-    (expm1 of each rate, no 1 - c): a few ulps relative to itself for every mu.
+    Over-damped: each small part is a sum of terms that cancel at most by a factor
+    ~2 there (expm1 of each rate, no 1 - c): a few ulps relative to itself.
+    Under- and critically damped (mu <= 1): by subtraction, a few ulps of 1 (all
+    that eq. (F) needs, whose error is counted against the scale of its terms);
+    the subtraction is kept bit for bit because the chaotic transients of the
+    pipeline's scenes are reproduced to the last bit only by the same roundings.
     """
     mu = params[P_MU]
     branch = params[P_BRANCH]
     if branch == UNDER:
         w = params[P_FREQ]
         e = math.exp(-mu * t)
-        decay = -math.expm1(-mu * t)  # 1 - e^{-mu t}
         sn = math.sin(w * t) / w
         cs = math.cos(w * t)
-        vers = 2.0 * math.sin(0.5 * w * t) ** 2  # 1 - cos(w t)
         c, S, Sd = e * (cs + mu * sn), e * sn, e * (cs - mu * sn)
-        return decay + e * (vers - mu * sn), t - S, decay + e * (vers + mu * sn), c, S, Sd
+        return 1.0 - c, t - S, 1.0 - Sd, c, S, Sd
     if branch == CRITICAL:
         e = math.exp(-t)
-        decay = -math.expm1(-t)
-        return decay - t * e, t - t * e, decay + t * e, (1.0 + t) * e, t * e, (1.0 - t) * e
+        c, S, Sd = (1.0 + t) * e, t * e, (1.0 - t) * e
+        return 1.0 - c, t - S, 1.0 - Sd, c, S, Sd
     k = params[P_FREQ]
     ls = params[P_LSLOW]
     lf = params[P_LFAST]
