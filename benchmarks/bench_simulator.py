@@ -9,13 +9,13 @@ eq. ``dimensionless-eq-motion``; psi' = xi = xi' = 0 at t = 0):
 * ``bounce``: wall time of ``simulate(Parameters(gamma, mu),
   State.from_psi_xi(psi0, 0, 0, 0), max_events=N)`` (N = 1e6 by default), after
   a warm-up call, ``--repeats`` times; median, min and max of impacts/s.
-* ``scipy``: the baseline of ``benchmarks/scipy_baseline.py`` (DOP853, rtol =
-  atol = 1e-12, terminal event x = 0 crossed downwards, restart after every
-  impact with x' -> -x').  It is orders of magnitude slower, so it gets a time
-  budget: one *long* run with loss checks on (``--scipy-seconds``, default 20 s,
+* ``scipy``: the method ``scipy`` of :mod:`bounce.methods.scipy_ivp` (the one solve_ivp driver:
+  DOP853, rtol = atol = 1e-12, terminal event x = 0 crossed downwards, restart after every
+  impact with x' -> -x').  It is orders of magnitude slower, so it gets a CPU
+  budget: one *long* run with its failure checks on (``--scipy-seconds``, default 20 s,
   or until it loses an impact) gives how far it got and how accurate it was;
   its speed is then timed ``--repeats`` times, checks off, on the first K
-  impacts, K = what the long run did in its first ``--scipy-timing-seconds``
+  impacts, K = what a run with checks on does in ``--scipy-timing-seconds``
   (default 3 s).  ``bounce`` is timed on the same K impacts as well
   (row "bounce, same K"), which is the like-for-like ratio; the 1e6-impact row
   covers later (shorter) flights too.
@@ -24,13 +24,13 @@ eq. ``dimensionless-eq-motion``; psi' = xi = xi' = 0 at t = 0):
 * error: relative error of the first impact time t1 against the exact
   sqrt(2 psi0 / gamma) (free fall of the centre of mass with the spring at
   rest), and the largest relative error of t1..t10 against an independent
-  mpmath computation (closed-form flights -- psi'' = -gamma,
-  xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 40 digits).
-* lost impact (scipy, see scipy_baseline.py): first flight that (i) stepped
-  over a dip of x below the floor, (ii) stalled (zero-length flight) or
-  (iii) went below x = -1e-9; and separately the first impact whose time
-  differs from bounce's by more than 1e-6 relative (the transient of A is
-  chaotic, so this happens after a few tens of impacts whatever the method).
+  mpmath computation (:mod:`bounce.reference`: closed-form flights -- psi'' = -gamma,
+  xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 50 digits).
+* lost impact (scipy, see :mod:`bounce.methods.scipy_ivp` for the rules): the first failure of the
+  long run (missed_impact: a step over a dip of x below the floor; fell_through; stall: zero-length
+  flights; energy_gain; collapse); and separately the first impact whose time differs from
+  bounce's by more than 1e-6 relative (the transient of A is chaotic, so this happens after a few
+  tens of impacts whatever the method).
 * numba JIT: in a fresh process with NUMBA_CACHE_DIR set to a new temporary
   directory, the time of ``import bounce`` and of the first
   ``simulate(..., max_events=10)`` (= compile time); then the same in a second
@@ -62,8 +62,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from scipy_baseline import simulate_scipy  # noqa: E402
+#: the solve_ivp setting of the benchmark (bounce.methods.scipy_ivp): DOP853 at rtol = atol = 1e-12
+SCIPY = {"solver": "DOP853", "rtol": 1e-12, "atol": 1e-12}
+#: failures of bounce.methods.scipy_ivp that lose an impact (not the CPU budget)
+LOST = ("missed_impact", "fell_through", "stall", "energy_gain", "collapse")
 
 SCENES = {
     "A": dict(gamma=0.01, mu=0.01, psi0=6.0),
@@ -77,107 +79,14 @@ DIVERGE_REL = 1e-6
 # independent high-precision reference for the first impacts
 # --------------------------------------------------------------------------
 
-class _Flight:
-    """Closed-form free flight in (psi, xi): psi'' = -gamma, xi'' + 2 mu xi' + xi = 0.
+def reference_impacts(gamma, mu, psi0, n=N_REF):
+    """First ``n`` impact times (mpf) from psi(0) = psi0, xi = psi' = xi' = 0, by :mod:`bounce.reference`
+    (50 digits; its root search cannot skip an impact).  In its deviation variables the start is
+    x = psi0, xdot = xi' = 0, eta = xi + gamma = gamma."""
+    from bounce import reference
 
-    (Sum and difference of eq. dimensionless-eq-motion with psi = (y + x - 1)/2,
-    xi = (y - x - 1)/2.)  ``mp`` is the mpmath module or None for float64/numpy.
-    """
-
-    def __init__(self, gamma, mu, psi, p, xi, a, mp=None):
-        self.mp, self.gamma, self.psi, self.p = mp, gamma, psi, p
-        if mu == 1:
-            raise ValueError("critical damping mu = 1 not handled by the reference")
-        if mp is None:
-            sqrt = math.sqrt
-        else:
-            sqrt = mp.sqrt
-        self.under = mu < 1
-        if self.under:  # xi = e^{-mu t} (xi0 cos wt + (a0 + mu xi0)/w sin wt)
-            w = sqrt(1 - mu * mu)
-            self.c = (mu, w, xi, (a + mu * xi) / w, a, (mu * a + xi) / w)
-        else:  # xi = A e^{r1 t} + B e^{r2 t}
-            s = sqrt(mu * mu - 1)
-            r1, r2 = -mu + s, -mu - s
-            A = (a - r2 * xi) / (r1 - r2)
-            self.c = (r1, r2, A, xi - A)
-
-    def _fns(self):
-        if self.mp is None:
-            return np.exp, np.cos, np.sin
-        return self.mp.exp, self.mp.cos, self.mp.sin
-
-    def state(self, t):
-        """(psi, psi', xi, xi') at time t after the start of the flight."""
-        exp, cos, sin = self._fns()
-        psi = self.psi + self.p * t - self.gamma * t * t / 2
-        p = self.p - self.gamma * t
-        if self.under:
-            mu, w, c0, s0, a0, s1 = self.c
-            e, cw, sw = exp(-mu * t), cos(w * t), sin(w * t)
-            xi = e * (c0 * cw + s0 * sw)
-            a = e * (a0 * cw - s1 * sw)
-        else:
-            r1, r2, A, B = self.c
-            e1, e2 = exp(r1 * t), exp(r2 * t)
-            xi = A * e1 + B * e2
-            a = A * r1 * e1 + B * r2 * e2
-        return psi, p, xi, a
-
-    def x(self, t):
-        psi, _, xi, _ = self.state(t)
-        return psi - xi
-
-
-def reference_impacts(gamma, mu, psi0, n=N_REF, dps=40):
-    """First ``n`` impact times from psi(0) = psi0, xi = psi' = xi' = 0, in mpmath.
-
-    Each flight: scan x(t) = psi - xi in float64 with step h (first sign
-    change; smallest sampled x before it reported as the tangency margin), then
-    refine the bracket in mpmath (``findroot``, Illinois) at ``dps`` digits and
-    apply the impact psi' <-> xi'.  Returns (times as mpf, margin), margin =
-    smallest sampled interior local minimum of x before an impact divided by
-    the flight's largest sampled x (inf if x has no such dip; a value near 0
-    would flag a near-tangency the scan could have misjudged).
-    """
-    import mpmath
-
-    mp = mpmath.mp
-    mp.dps = dps
-    g, m = mpmath.mpf(gamma), mpmath.mpf(mu)  # the exact binary values bounce sees
-    psi, p, xi, a = mpmath.mpf(psi0), mpmath.mpf(0), mpmath.mpf(0), mpmath.mpf(0)
-    t_abs, times, margin = mpmath.mpf(0), [], math.inf
-    for k in range(n):
-        fl_mp = _Flight(g, m, psi, p, xi, a, mp=mpmath)
-        fl_np = _Flight(gamma, mu, float(psi), float(p), float(xi), float(a))
-        h, t_lo, found = 1e-3, 0.0, None
-        while found is None:  # scan in chunks of 1e5 steps
-            tt = t_lo + h * np.arange(1, 100001)
-            xs = fl_np.x(tt)
-            neg = np.nonzero(xs < 0)[0]
-            j = int(neg[0]) if neg.size else len(xs)
-            seg = xs[:j]  # sampled x before the first sign change: any near-tangency?
-            if seg.size > 2:
-                mins = np.nonzero((seg[1:-1] < seg[:-2]) & (seg[1:-1] < seg[2:]))[0] + 1
-                if mins.size:
-                    margin = min(margin, float(seg[mins].min() / seg.max()))
-            if neg.size:
-                found = (tt[j - 1] if j else t_lo, tt[j])
-            else:
-                t_lo = float(tt[-1])
-                if t_lo > 1e5:
-                    raise RuntimeError("reference: no impact found")
-        lo, hi = mpmath.mpf(found[0]), mpmath.mpf(found[1])
-        if k > 0 and found[0] == 0.0:
-            lo = mpmath.mpf(found[1]) / 1000  # x(0) = 0 after an impact: stay off the restart
-        if not (fl_mp.x(lo) > 0 and fl_mp.x(hi) < 0):
-            raise RuntimeError(f"reference: bracket lost at flight {k}")
-        tau = mpmath.findroot(fl_mp.x, (lo, hi), solver="illinois", tol=mpmath.mpf(10) ** (-2 * dps + 10))
-        psi, p, xi, a = fl_mp.state(tau)
-        p, a = a, p  # impact: x' -> -x', y' unchanged  <=>  psi' <-> xi'
-        t_abs += tau
-        times.append(t_abs)
-    return times, margin
+    times, _, _ = reference.trajectory(gamma, mu, reference.Dev(psi0, 0.0, 0.0, gamma), n)
+    return times
 
 
 def errors_vs_reference(t, ref, t1_exact):
@@ -286,6 +195,8 @@ def _first_over(a, b, thr):
 def run_scene(name, cfg, args, notes):
     import mpmath
     from bounce import Parameters, State
+    from bounce.events import IMPACT
+    from bounce.methods import scipy_ivp
 
     gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]
     params = Parameters(gamma, mu)
@@ -293,7 +204,7 @@ def run_scene(name, cfg, args, notes):
     label = f"{name} (g={gamma:g}, mu={mu:g}, psi0={psi0:g})"
 
     # reference
-    ref, margin = reference_impacts(gamma, mu, psi0)
+    ref = reference_impacts(gamma, mu, psi0)
     mpmath.mp.dps = 40
     t1_exact = mpmath.sqrt(2 * mpmath.mpf(psi0) / mpmath.mpf(gamma))
     if abs(ref[0] - t1_exact) / t1_exact > mpmath.mpf(10) ** -30:
@@ -301,19 +212,20 @@ def run_scene(name, cfg, args, notes):
 
     # bounce, N events
     tr, walls, _ = time_bounce(params, state, args.events, args.repeats)
-    imp = tr.kind == 0
+    imp = tr.kind == IMPACT
     n_imp = int(imp.sum())
     t_imp = tr.t[imp]
     rates = [n_imp / w for w in walls]
     err_b = errors_vs_reference(t_imp, ref, t1_exact)
 
-    # scipy long run (checks on)
-    long = simulate_scipy(gamma, mu, state, args.events, args.scipy_seconds, check=True)
-    K = int(np.searchsorted(long.wall, args.scipy_timing_seconds, side="right"))
-    if long.lost_index is not None:
-        K = min(K, long.lost_index)
-    K = max(K, 1)
-    K = min(K, long.n_impacts)
+    # scipy long run (checks on), and K = what it does in the timing budget
+    long = scipy_ivp.run(params, state, dict(SCIPY, cpu_budget=args.scipy_seconds), max_events=args.events)
+    lost_index = long.failure_index if long.failure in LOST else None
+    probe = scipy_ivp.run(params, state, dict(SCIPY, cpu_budget=args.scipy_timing_seconds), max_events=args.events)
+    K = len(probe.t)
+    if lost_index is not None:
+        K = min(K, lost_index)
+    K = min(max(K, 1), len(long.t))
     err_s = errors_vs_reference(long.t, ref, t1_exact)
     div = _first_over(long.t, t_imp, DIVERGE_REL)
     tau_b = np.diff(np.concatenate(([0.0], t_imp)))
@@ -323,20 +235,21 @@ def run_scene(name, cfg, args, notes):
     # scipy timing runs (checks off), first K impacts
     s_walls = []
     for _ in range(args.repeats):
-        r = simulate_scipy(gamma, mu, state, K, 10 * args.scipy_seconds, check=False, stop_on_loss=False)
-        if r.n_impacts != K:
-            raise RuntimeError(f"scipy timing run stopped early: {r.stop_reason}")
-        s_walls.append(r.elapsed)
+        r = scipy_ivp.run(params, state, dict(SCIPY, check=False, cpu_budget=10 * args.scipy_seconds), max_events=K)
+        if len(r.t) != K:
+            raise RuntimeError(f"scipy timing run stopped early: {r.failure}")
+        s_walls.append(r.cpu_time)
     s_rates = [K / w for w in s_walls]
     s_med = statistics.median(s_rates)
 
     # bounce on the same K impacts
     trK, wallsK, innerK = time_bounce(params, state, K, args.repeats)
-    ratesK = [int((trK.kind == 0).sum()) / w for w in wallsK]
+    ratesK = [int((trK.kind == IMPACT).sum()) / w for w in wallsK]
 
     # naive restart (event g = x after impacts too): how soon does it stall?
-    naive = simulate_scipy(gamma, mu, state, args.events, args.naive_seconds, check=False,
-                           restart_event="plain")
+    naive = scipy_ivp.run(params, state, dict(SCIPY, check=False, restart="plain", cpu_budget=args.naive_seconds),
+                          max_events=args.events)
+    naive_lost = naive.failure_index if naive.failure in LOST else None
 
     rows = []
     for method, n, ws, rs, err in (
@@ -351,41 +264,37 @@ def run_scene(name, cfg, args, notes):
             "ratio_to_scipy": statistics.median(rs) / s_med,
         })
 
+    n_long = len(long.t)
     long_info = {
-        "impacts": long.n_impacts, "elapsed_s": long.elapsed,
-        "rate": long.n_impacts / long.elapsed if long.elapsed else math.nan,
-        "stop_reason": long.stop_reason, "steps": long.n_steps, "rhs_calls": long.n_rhs,
-        "lost_index": long.lost_index, "lost_reasons": list(long.lost_reasons),
-        "lost_detail": long.lost_detail,
+        "impacts": n_long, "cpu_s": long.cpu_time, "rate": n_long / long.cpu_time if long.cpu_time else math.nan,
+        "stop_reason": long.failure or "max_events", "steps": long.extra["nsteps"], "rhs_calls": long.extra["nfev"],
+        "lost_index": lost_index, "lost_reason": long.failure if lost_index is not None else None,
         "first_rel_time_diff_gt_1e-6": div, "first_rel_tau_diff_gt_1e-6": div_tau,
-        "min_x_over_flights": float(long.min_x.min()) if long.min_x.size else None,
-        "naive_restart": {"impacts": naive.n_impacts, "stop_reason": naive.stop_reason,
-                          "lost_index": naive.lost_index, "lost_reasons": list(naive.lost_reasons),
-                          "elapsed_s": naive.elapsed},
-        "reference_tangency_margin": margin,
+        "naive_restart": {"impacts": len(naive.t), "stop_reason": naive.failure or "max_events",
+                          "lost_index": naive_lost, "cpu_s": naive.cpu_time},
         "bounce_stop_reason": tr.stop_reason, "bounce_events": len(tr),
         "bounce_t_end": float(tr.t[-1]),
     }
-    lost = ("none within the budget" if long.lost_index is None
-            else f"at impact #{long.lost_index + 1} ({', '.join(long.lost_reasons)}, t = {long.lost_detail['t_restart']:.10g})")
+    lost = ("none within the budget" if lost_index is None
+            else f"at impact #{lost_index + 1} ({long.failure}, t = {long.t_end:.10g})")
     notes.append(
-        f"{name}: scipy long run (loss checks on): {long.n_impacts} impacts in {long.elapsed:.1f} s "
-        f"= {long_info['rate']:.3g}/s, {long.n_steps} steps, {long.n_rhs} rhs calls, stop: {long.stop_reason}; "
-        f"reached t = {long.t[-1] if long.n_impacts else 0:.8g} (bounce's {len(tr):,} events reach t = {tr.t[-1]:.8g})"
+        f"{name}: scipy long run (failure checks on): {n_long} impacts in {long.cpu_time:.1f} s "
+        f"= {long_info['rate']:.3g}/s, {long_info['steps']} steps, {long_info['rhs_calls']} rhs calls, stop: "
+        f"{long_info['stop_reason']}; reached t = {long.t[-1] if n_long else 0:.8g} (bounce's {len(tr):,} events "
+        f"reach t = {tr.t[-1]:.8g})"
     )
-    notes.append(f"{name}: scipy lost an impact (missed dip / stall / x < -1e-9): {lost}; "
-                 f"min x over all its flights (dense output) = {long_info['min_x_over_flights']:.3g}")
+    notes.append(f"{name}: scipy lost an impact (missed impact / fell through / stall / energy gain / collapse): {lost}")
     notes.append(
         f"{name}: first impact whose time differs from bounce's by > 1e-6 relative: "
         f"{'#' + str(div + 1) if div is not None else 'none'} "
         f"(flight duration tau > 1e-6 relative: {'#' + str(div_tau + 1) if div_tau is not None else 'none'}; "
-        f"of {min(long.n_impacts, n_imp)} compared)"
+        f"of {min(n_long, n_imp)} compared)"
     )
     notes.append(
-        f"{name}: naive restart (event g = x with direction -1 only): "
-        + (f"zero-length stall at impact #{naive.lost_index + 1} after {naive.elapsed:.1f} s"
-           if naive.lost_index is not None else
-           f"no stall in {naive.n_impacts} impacts ({naive.elapsed:.1f} s, {naive.stop_reason})")
+        f"{name}: naive restart (event g = x after an impact too): "
+        + (f"{naive.failure} at impact #{naive_lost + 1} after {naive.cpu_time:.1f} s"
+           if naive_lost is not None else
+           f"no stall in {len(naive.t)} impacts ({naive.cpu_time:.1f} s, {naive.failure or 'max_events'})")
     )
     return rows, long_info
 

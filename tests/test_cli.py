@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import os
+import signal
+import stat
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -242,3 +245,183 @@ def test_module_entry_point(tmp_path):
     assert bad.returncode == 2 and bad.stdout == ""
     assert bad.stderr.splitlines() == ["error: gamma must be > 0 (allowed range: (0, inf)), got -1.0"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]
+
+
+# --------------------------------------------------------------------------- edges (issue 12)
+
+EDGE_BAD = {
+    "gamma_subnormal": (_with(gamma="1e-320"), "gamma"),  # was: exit 0 with NaN times
+    "gamma_below_supported": (_with(gamma="1e-13"), "gamma"),
+    "gamma_half": (_with(gamma="0.5"), "gamma"),  # y_eq = 0: equilibrium on the floor
+    "gamma_large": (_with(gamma="100"), "gamma"),
+    "mu_huge": (_with(mu="1e308"), "mu"),  # was: exit 0 with NaN
+    "mu_above_supported": (_with(mu="2e8"), "mu"),
+    "psi0_huge": (GOOD[:4] + ["--psi0", "1e308", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"], "psi0"),
+    "y0_below_x0": (_with(y0="5"), "y0"),
+    "y0_equal_x0": (_with(y0="6"), "y0"),
+    "y0_negative": (_with(x0="0", xdot0="1", y0="-1"), "y0"),
+    "energy_huge": (_with(y0="1e200"), "initial state"),
+    "speed_huge": (_with(ydot0="1e30"), "initial state"),
+    "events_huge": (GOOD + ["--events", "1e19"], "events"),  # was: OverflowError traceback
+    "events_memory": (GOOD + ["--events", "1e10"], "events"),
+    "dt_subnormal": (GOOD + ["--dt-sample", "1e-320"], "dt-sample"),  # was: OverflowError traceback
+    "dt_dense_no_t_max": (GOOD + ["--dt-sample", "1e-12"], "dt-sample"),
+    "repeated_gamma": (GOOD + ["--gamma", "0.02"], "--gamma"),  # was: silently the last value
+    "repeated_out": (GOOD + ["--out=a.nc"], "--out"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(EDGE_BAD))
+def test_edge_input_refused(case, tmp_path, capsys):
+    """One line naming the parameter and its allowed/supported range, status 2, nothing written."""
+    argv, name = EDGE_BAD[case]
+    code, stdout, err = _run(["simulate", *argv, "--out", str(tmp_path / "run.nc")], capsys)
+    _check_error(code, err, name)
+    assert code == 2 and stdout == ""
+    assert "range" in err or case.startswith("repeated"), err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_dense_sampling_refused_before_simulating(tmp_path, capsys, monkeypatch):
+    """--dt-sample 1e-12 without --t-max: refused after one event (a lower bound of the sampled
+    span), not after the whole simulation of --events."""
+    import bounce.cli as cli
+
+    calls = []
+    real = cli.simulate
+
+    def spy(*args, **kwargs):
+        calls.append(kwargs["max_events"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(cli, "simulate", spy)
+    code, _, err = _run(["simulate", *GOOD, "--events", "100000", "--dt-sample", "1e-12",
+                         "--out", str(tmp_path / "run.nc")], capsys)
+    _check_error(code, err, "dt-sample")
+    assert calls == [1]
+
+
+def _existing(tmp_path, capsys):
+    old = tmp_path / "run.nc"
+    assert main(["simulate", *GOOD, "--events", "3", "--out", str(old)]) == 0
+    capsys.readouterr()
+    return old, old.read_bytes()
+
+
+@pytest.mark.parametrize("kind", ["fifo", "dangling_symlink", "symlink_to_file", "dir_dot", "dir_slash"])
+def test_out_refuses_what_is_not_a_regular_file(kind, tmp_path, capsys):
+    """--out accepts a new name in an existing directory or an existing regular file; a FIFO, a
+    device, a symbolic link (dangling or not) would be destroyed or bypassed, and "nosuch/." names a
+    directory (it used to write a file called "nosuch")."""
+    target = tmp_path / "target.nc"
+    if kind == "fifo":
+        os.mkfifo(target)
+    elif kind == "dangling_symlink":
+        target.symlink_to(tmp_path / "nowhere.nc")
+    elif kind == "symlink_to_file":
+        (tmp_path / "real.nc").write_bytes(b"keep")
+        target.symlink_to(tmp_path / "real.nc")
+    before = sorted(p.name for p in tmp_path.iterdir())
+    out = {"dir_dot": str(tmp_path / "nosuch") + "/.", "dir_slash": str(tmp_path / "nosuch") + "/"}.get(kind, str(target))
+    code, _, err = _run(["simulate", *GOOD, "--events", "3", "--out", out], capsys)
+    _check_error(code, err, "--out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+    if kind == "fifo":
+        assert stat.S_ISFIFO(os.lstat(target).st_mode)
+    if kind.endswith("symlink") or kind == "symlink_to_file":
+        assert target.is_symlink()
+    if kind == "symlink_to_file":
+        assert (tmp_path / "real.nc").read_bytes() == b"keep"
+
+
+def test_out_refuses_character_device():
+    """/dev/null is refused by the check (as root it used to be replaced by a regular file)."""
+    with pytest.raises(FileExistsError, match="not a regular file"):
+        bio.check_output_path("/dev/null")
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+def test_disk_full_is_reported_and_old_file_kept(tmp_path, capsys, monkeypatch):
+    """netCDF reports a full disk as the bare "NetCDF: HDF error": the message says the disk is full
+    and that the old file is kept, and it is."""
+    old, before = _existing(tmp_path, capsys)
+
+    def hdf_error(self, path, *args, **kwargs):
+        open(path, "wb").close()
+        raise RuntimeError("NetCDF: HDF error")
+
+    monkeypatch.setattr("xarray.Dataset.to_netcdf", hdf_error)
+    monkeypatch.setattr(bio, "_free_bytes", lambda directory: 0)
+    code, out, err = _run(["simulate", *GOOD, "--events", "5", "--out", str(old)], capsys)
+    _check_error(code, err, "disk full")
+    assert code == 1 and "old file is kept" in err and "HDF" not in err
+    assert old.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]
+
+
+@pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_signal_during_write_in_process(signum, status, tmp_path, capsys, monkeypatch):
+    """SIGINT (KeyboardInterrupt) or SIGTERM during the write: one line, status 128 + signal, the
+    temporary file removed, the old file kept (SIGINT used to print a 19-line traceback)."""
+    old, before = _existing(tmp_path, capsys)
+
+    def interrupted(self, path, *args, **kwargs):
+        with open(path, "wb") as fh:
+            fh.write(b"partial")
+        os.kill(os.getpid(), signum)
+        time.sleep(5)  # the handler raises here
+        raise AssertionError("signal not delivered")
+
+    monkeypatch.setattr("xarray.Dataset.to_netcdf", interrupted)
+    code, out, err = _run(["simulate", *GOOD, "--events", "5", "--out", str(old)], capsys)
+    assert code == status and out == ""
+    assert len(err.splitlines()) == 1 and err.startswith("error: ") and "Traceback" not in err
+    assert old.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]
+
+
+_SLOW_WRITER = """
+import sys, time, xarray
+from bounce.cli import main
+def slow(self, path, *args, **kwargs):
+    with open(path, "wb") as fh:
+        fh.write(b"partial" * 1000)
+    time.sleep(120)
+xarray.Dataset.to_netcdf = slow
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def _start_slow_write(tmp_path, out):
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    proc = subprocess.Popen([sys.executable, "-c", _SLOW_WRITER, "simulate", *GOOD, "--events", "5", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 120
+    while not [p for p in tmp_path.iterdir() if p.name.endswith(".bounce-tmp")]:
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.05)
+    return proc
+
+
+@pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_real_signal_during_write(signum, status, tmp_path):
+    """The same with a real process and a real signal while the temporary file exists."""
+    out = tmp_path / "run.nc"
+    proc = _start_slow_write(tmp_path, out)
+    proc.send_signal(signum)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == status, stderr
+    assert stdout == "" and len(stderr.splitlines()) == 1 and stderr.startswith("error: ")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sigkill_leftover_removed_by_next_run(tmp_path, capsys):
+    """SIGKILL cannot be caught: the temporary stays, named .NAME.<pid>.<hex>.bounce-tmp; the next run
+    writing the same target removes it (its pid is dead) and leaves only the new file."""
+    out = tmp_path / "run.nc"
+    proc = _start_slow_write(tmp_path, out)
+    proc.kill()
+    proc.communicate(timeout=60)
+    left = [p.name for p in tmp_path.iterdir()]
+    assert len(left) == 1 and left[0].startswith(".run.nc.") and left[0].endswith(".bounce-tmp")
+    assert main(["simulate", *GOOD, "--events", "3", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert [p.name for p in tmp_path.iterdir()] == ["run.nc"]

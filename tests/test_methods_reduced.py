@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from bounce import Deviations, Parameters, simulate
+from bounce import Deviations, Parameters, simulate, theory
 from bounce.methods import contact_switch, horizon, rigid
 from bounce.methods.base import MethodResult
 
@@ -26,7 +26,7 @@ def drop(gamma, mu, psi0):
 # --------------------------------------------------------------------------- rigid ball
 
 
-@pytest.mark.parametrize("r", [0.5, 0.9, rigid.r_double_impact(0.01)])
+@pytest.mark.parametrize("r", [0.5, 0.9, theory.rest_coefficient_function_of_mu(0.01)])
 @pytest.mark.parametrize("gamma, psi0", [(0.01, 6.0), (1e-5, 0.25)])
 def test_constant_r_collapse_time(r, gamma, psi0):
     """Introduction: t_inf = t_1 + 2 u_1/(gamma (1 - r)), u_1 = r u_0 (the geometric series of the flights).
@@ -54,7 +54,7 @@ def test_fifth_law_flight_sum_converges():
     assert res.failure == "collapse"
     U = res.setting["U"]
     # default U: r(u_0) = e^{-mu T_xi}
-    assert abs(res.extra["r_n"][0] - rigid.r_double_impact(0.01)) < 1e-12
+    assert abs(res.extra["r_n"][0] - theory.rest_coefficient_function_of_mu(0.01)) < 1e-12
     u0 = res.extra["u_0"]
     c = 5.0 * (U / u0) ** 0.2
     n = np.arange(1, len(res.t) + 1)
@@ -69,8 +69,8 @@ def test_fifth_law_flight_sum_converges():
 def test_our_r_is_continuous_and_does_not_collapse():
     """Eq. our-r: r(u_c) = e^{-mu T_xi} from both sides; below u_c, u_n ~ 3 gamma/(mu n): no collapse."""
     gamma, mu = 0.01, 0.01
-    uc = rigid.u_c(gamma, mu)
-    assert abs((1.0 - mu * uc / (3.0 * gamma)) - rigid.r_double_impact(mu)) < 1e-15
+    uc = theory.u_c(gamma, mu)
+    assert abs((1.0 - mu * uc / (3.0 * gamma)) - theory.rest_coefficient_function_of_mu(mu)) < 1e-15
     p, ini = drop(gamma, mu, 6.0)
     res = rigid.run_our_r(p, ini, {}, max_events=200_000)
     assert res.failure == ""

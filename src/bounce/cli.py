@@ -10,14 +10,29 @@ velocities ``--x0 --xdot0 --y0 --ydot0``, or the paper's centre-of-mass and
 spring variables ``--psi0 --psidot0 --xi0 --xidot0`` (eq. ``xi-psi``).
 
 Bad input exits with status 2 and one line ``error: ...`` on stderr naming the
-parameter and its allowed range; a failure while simulating or writing exits
-with status 1.  No file is left behind on failure.
+parameter and its allowed range (also for an option given twice); a failure
+while simulating or writing exits with status 1 (a full disk says so, and the
+old file is kept); SIGINT and SIGTERM exit with 130 and 143 after one line.
+No file is left behind on failure, not even a temporary one (a temporary left
+by SIGKILL is removed by the next run writing the same file).
+
+Supported inputs (refused up front otherwise, see
+:func:`bounce.model.check_supported`): gamma in [1e-12, 0.5), mu in [0, 1e8],
+y0 > x0 >= 0, and an initial energy whose longest possible flight is at most
+1e8 time units; every accepted input gives finite results.
+
+Event times ``t`` are correctly rounded sums of the exact phase durations
+``tau``; a phase shorter than half an ulp of t (late in the asymptotic regime
+after very long runs, or a chattering sticky onset) leaves t unchanged, so
+consecutive event times may coincide while tau stays exact.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
+import signal
 import sys
 from collections import Counter
 
@@ -26,10 +41,11 @@ import numpy as np
 from . import __version__
 from .events import KIND_NAMES
 from .io import check_output_path, to_dataset, write_netcdf
-from .model import InputError, Parameters, State
-from .simulate import simulate
+from .model import InputError, Parameters, State, check_physical, check_supported
+from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
 MAX_SAMPLES = 10_000_000
 
 XY_FORM = ("x0", "xdot0", "y0", "ydot0")
@@ -38,6 +54,14 @@ PSI_FORM = ("psi0", "psidot0", "xi0", "xidot0")
 
 class UsageError(Exception):
     """Bad command-line input; the message is the one line printed after 'error: '."""
+
+
+class Terminated(Exception):
+    """SIGTERM, raised by the handler so that cleanup (temporary files) runs as for KeyboardInterrupt."""
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated()
 
 
 class _Parser(argparse.ArgumentParser):
@@ -64,15 +88,32 @@ def _number(allowed: str, check=lambda v: True, allow_inf: bool = False):
 
 
 def _count(text: str) -> int:
-    """argparse type: an integer >= 1 (``1000`` or ``1e6``)."""
+    """argparse type: an integer in [1, MAX_EVENTS] (``1000`` or ``1e6``) whose records fit in memory."""
     try:
         value = float(text)
-        ok = math.isfinite(value) and value.is_integer() and value >= 1
+        ok = math.isfinite(value) and value.is_integer() and 1 <= value <= MAX_EVENTS
     except ValueError:
         ok = False
     if not ok:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 1 (allowed range: [1, inf)), got {text!r}")
+        raise argparse.ArgumentTypeError(
+            f"must be an integer (allowed range: [1, {MAX_EVENTS:.0e}]; the records take {BYTES_PER_EVENT} "
+            f"bytes per event), got {text!r}"
+        )
+    memory = _physical_memory()
+    if memory is not None and value * BYTES_PER_EVENT > memory:
+        raise argparse.ArgumentTypeError(
+            f"must be at most {memory // BYTES_PER_EVENT} on this machine (allowed range: [1, "
+            f"{memory // BYTES_PER_EVENT}]; the records take {BYTES_PER_EVENT} bytes per event and "
+            f"{memory / 2**30:.3g} GiB of memory are installed), got {text!r}"
+        )
     return int(value)
+
+
+def _physical_memory() -> int | None:
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):  # pragma: no cover (not POSIX)
+        return None
 
 
 _ANY = _number("(-inf, inf)")
@@ -139,9 +180,13 @@ def _initial_state(args) -> State:
     if missing:
         raise UsageError(f"incomplete initial state: missing {opts(missing)} (give all of {opts(form)})")
     if form is XY_FORM:
-        return State(args.x0, args.xdot0, args.y0, args.ydot0)
+        state = State(args.x0, args.xdot0, args.y0, args.ydot0)
+        check_physical(state)
+        return state
     try:
-        return State.from_psi_xi(args.psi0, args.psidot0, args.xi0, args.xidot0)
+        state = State.from_psi_xi(args.psi0, args.psidot0, args.xi0, args.xidot0)
+        check_physical(state)
+        return state
     except InputError as exc:
         raise InputError(
             f"{exc} (from --psi0 --psidot0 --xi0 --xidot0: x0 = psi0 - xi0, xdot0 = psidot0 - xidot0)"
@@ -149,21 +194,28 @@ def _initial_state(args) -> State:
 
 
 def _n_samples(end: float, dt: float) -> int:
-    n = math.floor(end / dt) + 1
-    if n > MAX_SAMPLES:
+    """Number of samples k dt <= end (refused beyond MAX_SAMPLES; end/dt may overflow to inf)."""
+    ratio = end / dt
+    if not ratio < MAX_SAMPLES:
         raise UsageError(
             f"--dt-sample must be >= {end / (MAX_SAMPLES - 1):.6g} to sample [0, {end:.6g}] with at most "
-            f"{MAX_SAMPLES} samples, got {dt!r}"
+            f"{MAX_SAMPLES} samples (allowed range: [{end / (MAX_SAMPLES - 1):.6g}, inf)), got {dt!r}"
         )
-    return n
+    return math.floor(ratio) + 1
 
 
-def _sample_times(traj, t_max: float, dt: float) -> np.ndarray:
-    """k dt, k = 0, 1, ... on [0, t_valid]; [0, t_max] if the motion is determined forever
-    (sticky_forever), or [0, last event] if t_max is infinite too."""
+def _sample_end(traj, t_max: float) -> float:
+    """End of the sampled span: t_valid; t_max if the motion is determined forever (sticky_forever),
+    or the last event if t_max is infinite too."""
     end = traj.t_valid
     if not math.isfinite(end):
         end = t_max if math.isfinite(t_max) else (float(traj.t[-1]) if len(traj) else 0.0)
+    return end
+
+
+def _sample_times(traj, t_max: float, dt: float) -> np.ndarray:
+    """k dt, k = 0, 1, ... on [0, end] (see :func:`_sample_end`)."""
+    end = _sample_end(traj, t_max)
     times = np.arange(_n_samples(end, dt), dtype=np.float64) * dt
     return times[times <= end]
 
@@ -180,12 +232,17 @@ def _summary(traj, path, n_samples) -> str:
 def _simulate_command(args) -> int:
     params = Parameters(args.gamma, args.mu)
     initial = _initial_state(args)
+    check_supported(params, initial.deviations(params))
     try:
         out = check_output_path(args.out)
     except OSError as exc:
-        raise UsageError(f"--out must be a file in an existing, writable directory: {exc}") from None
-    if args.dt_sample is not None and math.isfinite(args.t_max):
-        _n_samples(args.t_max, args.dt_sample)  # fail before simulating
+        raise UsageError(
+            f"--out must be a new file or a regular file in an existing, writable directory: {exc}"
+        ) from None
+    if args.dt_sample is not None:
+        # fail before simulating: the sampled span is [0, t_max], or at least [0, first event]
+        first = simulate(params, initial, max_events=1, t_max=args.t_max, energy_stop=args.energy_stop)
+        _n_samples(args.t_max if math.isfinite(args.t_max) else _sample_end(first, args.t_max), args.dt_sample)
     traj = simulate(params, initial, max_events=args.events, t_max=args.t_max, energy_stop=args.energy_stop)
     times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
     write_netcdf(to_dataset(traj, times), out)
@@ -210,15 +267,43 @@ def _join_negative_numbers(argv: list[str]) -> list[str]:
     return out
 
 
+def _reject_repeated_options(argv: list[str]) -> None:
+    """An option given twice is an error (argparse would silently keep the last value)."""
+    seen = set()
+    for tok in argv:
+        if tok.startswith("--") and len(tok) > 2:
+            name = tok.split("=", 1)[0]
+            if name in seen:
+                raise UsageError(f"{name} is given more than once (allowed: once per option)")
+            seen.add(name)
+
+
 def _one_line(message) -> str:
+    if isinstance(message, OSError) and message.strerror and message.filename is None:
+        message = message.strerror
     return " ".join(str(message).split())
 
 
 def main(argv=None) -> int:
-    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit status.
+
+    SIGTERM is turned into an exception for the duration (temporary files are then
+    removed as on any failure) and the previous handler restored afterwards.
+    """
+    with_handler = True
     try:
+        try:
+            previous = signal.signal(signal.SIGTERM, _raise_terminated)
+        except ValueError:  # not the main thread: leave signals alone
+            with_handler = False
         argv = sys.argv[1:] if argv is None else list(argv)
-        args = build_parser().parse_args(_join_negative_numbers(argv))
+        if argv[:1] == ["check"]:  # one claim of bounce.checks, alone
+            from .claims_cli import main as check_main
+
+            return check_main(argv[1:])
+        argv = _join_negative_numbers(argv)
+        _reject_repeated_options(argv)
+        args = build_parser().parse_args(argv)
         if args.command == "simulate":
             return _simulate_command(args)
         raise UsageError(f"unknown command {args.command!r}")  # pragma: no cover (argparse checks)
@@ -227,12 +312,21 @@ def main(argv=None) -> int:
     except (UsageError, InputError) as exc:
         print(f"error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("error: interrupted (SIGINT); the output file is left as it was", file=sys.stderr)
+        return EXIT_SIGINT
+    except Terminated:
+        print("error: terminated (SIGTERM); the output file is left as it was", file=sys.stderr)
+        return EXIT_SIGTERM
     except MemoryError:
         print("error: not enough memory (reduce --events or increase --dt-sample)", file=sys.stderr)
         return EXIT_FAILURE
     except (OSError, RuntimeError) as exc:
         print(f"error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_FAILURE
+    finally:
+        if with_handler:
+            signal.signal(signal.SIGTERM, signal.SIG_DFL if previous is None else previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

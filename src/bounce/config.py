@@ -29,8 +29,10 @@ from .errors import InputError
 
 SCHEMA = Path(__file__).resolve().parents[2] / "config" / "schema.yaml"
 
-#: datasets under results/data/ made by rules other than `simulate` (a scene may not take these names)
-DERIVED_DATASETS = ("sticky", "sticky-convergence", "sticky-inference")
+#: datasets made by rules other than `simulate` (`sticky-runs`: the group of per-eps runs under
+#: results/data/sticky/); a scene may take none of these names, nor `sticky` (that folder)
+DERIVED_DATASETS = ("sticky-runs", "sticky-convergence", "sticky-inference")
+RESERVED_SCENE_NAMES = DERIVED_DATASETS + ("sticky",)
 
 
 class ConfigError(InputError):
@@ -115,9 +117,9 @@ def _check_scenes(config: dict) -> None:
     for section, scenes in (("scenes", config.get("scenes", {})),
                             ("methods.scenes", config.get("methods", {}).get("scenes", {}))):
         for name, spec in scenes.items():
-            if name in DERIVED_DATASETS and section == "scenes":
+            if name in RESERVED_SCENE_NAMES and section == "scenes":
                 raise ConfigError(f"scenes.{name}: the name is taken by a derived dataset "
-                                  f"({', '.join(DERIVED_DATASETS)}); choose another")
+                                  f"({', '.join(RESERVED_SCENE_NAMES)}); choose another")
             try:
                 params = scene_parameters(spec)
                 scene_initial(spec, params)

@@ -24,7 +24,12 @@ speed |x'| is below what that window can resolve, 4 max(|x''| delta2, |x'''|
 delta3^2 / 2) with delta2 = sqrt(2 xn/|x''|), delta3 = (6 xn/|x'''|)^(1/3), is
 treated as tangential (approximation at the rounding level; generic impacts are
 many orders of magnitude faster).  It is a sticky onset if also
-x'' <= 4 |x'''| delta3, and a grazing otherwise.
+x'' <= 4 |x'''| delta3, or if x'' < 0 beyond that window (at x = x' = 0, x'' is the
+floor force F: the floor holds a mass pressed onto it), and a grazing otherwise.
+The rounding level has an absolute floor of 1e-300: heights below it, where
+products such as x'' x underflow, are the floor itself.  A state dropped from
+x ~ 1e-300 therefore comes to rest (sticky_start) instead of chattering through
+1e6 impacts of speed 1e-151 in 1e-143 time units.
 
 Time is accumulated with Neumaier's compensated sum so that t stays correctly
 rounded after 1e6+ short flights; the flight durations are stored exactly.
@@ -60,6 +65,16 @@ STOP_EVENTS, STOP_TIME, STOP_ENERGY, STOP_STICKY_FOREVER, STOP_FAILED = range(5)
 STOP_NAMES = ("max_events", "t_max", "energy", "sticky_forever", "root_finder_failed")
 
 SQRT2 = math.sqrt(2.0)
+
+# zero-speed contacts (module docstring): x is known to xn = XN_ULPS eps scale; a contact is tangential
+# if its speed is below WINDOW_FACTOR times what the hidden window resolves, in powers:
+# v^2 <= TANGENT_ACC |x''| xn or |v|^3 <= TANGENT_JERK |x'''| xn^2; it is a sticky onset if also
+# x''^3 <= STICKY_ONSET x'''^2 xn (x'' <= WINDOW_FACTOR |x'''| delta3)
+XN_ULPS = 4.0
+WINDOW_FACTOR = 4.0
+TANGENT_ACC = 2.0 * WINDOW_FACTOR**2  # (4 |x''| delta2)^2 = 32 |x''| xn
+TANGENT_JERK = 4.5 * WINDOW_FACTOR**3  # (4 |x'''| delta3^2/2)^3 = 288 |x'''| xn^2
+STICKY_ONSET = 6.0 * WINDOW_FACTOR**3  # (4 |x'''| delta3)^3 = 384 x'''^2 xn
 
 
 @njit(cache=True)
@@ -136,17 +151,21 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
 def _at_rest_is_sticky(a, eta, gamma, mu):
     """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?
 
-    F is taken as zero within 8 eps of its terms plus 1: a state given through
-    y ~ 1 is only known to that rounding (approximation at the rounding level).
+    F = eta + 2 mu xi' - 2 gamma is taken as zero within 8 eps of its terms, F' within
+    8 eps of its own: the rounding of forming them (approximation at the rounding level).
+    The threshold is relative to the terms' scale, never absolute: a floor force of
+    1e-9 gamma decides the motion at every gamma.  A state given as heights converts
+    to eta with one rounding relative to eta (y - x - 1 is exact for y - x in [1/2, 2]),
+    so this is also the input's own uncertainty.
     """
     F, Fp = floor_force(a, eta, gamma, mu)
-    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma + 1.0)
+    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
     if F > noise:
         return False
     if F < -noise:
         return True
     # F = 0: stays if F' < 0, or F' = 0 too (then F'' = -gamma < 0, paper after eq. cond_di_distacco)
-    return Fp <= 8.0 * EPS * (abs(a) * (1.0 + 2.0 * mu * mu) + mu * (abs(eta) + 1.0))
+    return Fp <= 8.0 * EPS * (abs(a) * (1.0 + 2.0 * mu * mu) + mu * abs(eta))
 
 
 @njit(cache=True)
@@ -161,13 +180,35 @@ def _is_tangential(v, acc, jerk, xn):
     if v >= 0.0:
         return True
     v2 = v * v
-    return v2 <= 32.0 * abs(acc) * xn or v2 * abs(v) <= 288.0 * abs(jerk) * xn * xn
+    return v2 <= TANGENT_ACC * abs(acc) * xn or v2 * abs(v) <= TANGENT_JERK * abs(jerk) * xn * xn
 
 
 @njit(cache=True)
 def _is_sticky_onset(acc, jerk, xn):
-    """Tangential contact with x'' = 0 within the window delta3 and x''' < 0."""
-    return jerk < 0.0 and acc * acc * acc <= 384.0 * jerk * jerk * xn
+    """Tangential contact with x'' = 0 within the window delta3 and x''' < 0, or with
+    x'' = F < 0 beyond that window (pressed onto the floor)."""
+    window = STICKY_ONSET * jerk * jerk * xn
+    return (jerk < 0.0 and acc * acc * acc <= window) or acc * acc * acc < -window
+
+
+@njit(cache=True)
+def rounding_level(scale):
+    """xn = XN_ULPS eps scale: how well x is known at a contact (scale: the magnitudes of eq. (F)'s terms)."""
+    return XN_ULPS * EPS * scale + 1e-300
+
+
+def contact_window(scale: float, acc: float, jerk: float) -> tuple[float, float, float, float]:
+    """(xn, v_tol, delta2, delta3) of the contact classifier at a contact with x'' = acc, x''' = jerk.
+
+    Contacts slower than v_tol are tangential (:func:`_is_tangential`); delta2 = sqrt(2 xn/|x''|) and
+    delta3 = (6 xn/|x'''|)^(1/3) are the windows in which rounding hides the contact time (inf for a zero
+    derivative).  For the claims about the classifier; the loop uses the same constants.
+    """
+    xn = rounding_level(scale)
+    v_tol = max(math.sqrt(TANGENT_ACC * abs(acc) * xn), (TANGENT_JERK * abs(jerk) * xn * xn) ** (1.0 / 3.0))
+    d2 = math.sqrt(2.0 * xn / abs(acc)) if acc != 0 else math.inf
+    d3 = (6.0 * xn / abs(jerk)) ** (1.0 / 3.0) if jerk != 0 else math.inf
+    return xn, v_tol, d2, d3
 
 
 @njit(cache=True)
@@ -239,7 +280,7 @@ def run_events(
             _, xidd, xiddd, _ = xi_derivatives(eta_t - gamma, xid_t, mu)
             acc = -gamma - xidd
             jerk = -xiddd
-            xn = 4.0 * EPS * scale + 1e-300
+            xn = rounding_level(scale)
             if not _is_tangential(v, acc, jerk, xn):
                 kind = IMPACT  # eq. collision-rule: psi' <-> xi'
                 a = u + a - gamma * tau

@@ -57,8 +57,13 @@ from .oscillator import P_MU, fundamental
 EPS = 2.220446049250313e-16
 #: relative safety margin on the curvature bound (covers rounding of B itself).
 B_MARGIN = 1.0 + 1e-12
-#: cap on safe steps per flight (a crawl towards a tangency needs ~1e3).
+#: cap on safe steps per flight besides those paid for by progress (a crawl towards a tangency
+#: needs ~1e3).
 MAX_STEPS = 200_000
+#: steps allowed per unit of flight time on top of MAX_STEPS: a long flight of an oscillating
+#: spring needs a few steps per period 2 pi (gamma = 1e-12: ~1e6 periods per flight), so the cap
+#: grows with the progress made; only a march that stalls runs out of it.
+STEPS_PER_TIME = 8.0
 #: steps after which the curvature bounds are refreshed at every step (long marches only)
 REFRESH_AFTER = 64
 
@@ -122,10 +127,13 @@ def safe_step(x, v, B):
 
 @njit(cache=True)
 def _envelope_below(level, x, v):
-    """Bounded mode: xi(t) = level - x, xi'(t) = -v; True if sqrt(xi^2 + xi'^2) < level,
-    so xi (whose envelope never grows) can never come back up to ``level``."""
+    """Bounded mode: xi(t) = level - x, xi'(t) = -v; True if sqrt(xi^2 + xi'^2) <= level,
+    so xi (whose envelope never grows) can never come back up to ``level`` except
+    tangentially (xi' = 0 there: not a crossing).  An envelope within 8 ulps above
+    the level counts as equal: the crossing it would allow lies below the rounding
+    of x (approximation at the rounding level, as for tangential contacts)."""
     xi_t = level - x
-    return math.sqrt(xi_t * xi_t + v * v) < level * (1.0 - 1e-12)
+    return math.sqrt(xi_t * xi_t + v * v) <= level * (1.0 + 8.0 * EPS)
 
 
 @njit(cache=True)
@@ -163,7 +171,7 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     re-evaluated there); HORIZON: no contact before t_limit;
     NEVER: contact proved impossible (bounded mode g = 0, u + a = 0: the
     oscillator's amplitude envelope dropped below the level xi must return to);
-    FAILED: MAX_STEPS exhausted.
+    FAILED: the step budget MAX_STEPS + STEPS_PER_TIME (t - t_start) exhausted.
     """
     mu = params[P_MU]
     xi0 = eta - g
@@ -178,10 +186,17 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         omc, tms, omsd, c, S, Sd = 0.0, 0.0, 0.0, 1.0, 0.0, 1.0
     else:
         x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        if x <= 4.0 * EPS * scale:
+            # a lift-off whose gap is still within rounding of the floor: the contact is here
+            return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd, x
         xi_t, xid_t = oscillator_at(xi0, a, omc, S, Sd)
         z1, z2, z3, z4 = xi_derivatives(xi_t, xid_t, mu)  # for x''(t_start) below
     s = 0.0
-    for it in range(MAX_STEPS):
+    it = -1
+    while True:
+        it += 1
+        if not it < MAX_STEPS + STEPS_PER_TIME * (t - t_start):  # also stops a NaN march
+            return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd, x
         if bounded and _envelope_below(level, x, v):
             return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd, x
         # window of the local bound: twice the last step or the Newton distance
@@ -191,7 +206,8 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         # where |x''| << B
         A = -g - z2
         h = max(h, 2.0 * s)
-        s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
+        if h < math.inf:  # the Newton distance x/|v| of a tiny speed may overflow: global bound only
+            s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
         if t + s > t_limit:
             return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd, x
         t_new = t + s
@@ -217,8 +233,6 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         # oscillator's fast mode dominates the bounds of t = 0 but is gone soon after)
         B = min(B, (g + derivative_bound(z1, z2, z3)) * B_MARGIN)
         M3 = min(M3, derivative_bound(z2, z3, z4) * B_MARGIN)
-    else:
-        return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd, x
     if v < 0.0:
         # Newton polish (x is at the rounding level); re-evaluated at the polished time, since
         # near a tangency the step is not negligible (a first-order update would bias x')

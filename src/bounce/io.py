@@ -24,8 +24,11 @@ give identical bytes.
 from __future__ import annotations
 
 import contextlib
+import errno
 import functools
 import os
+import re
+import stat
 import subprocess
 import uuid
 from pathlib import Path
@@ -50,6 +53,7 @@ __all__ = [
     "git_info",
     "read_dataset",
     "read_trajectory",
+    "remove_stale_temporaries",
     "sample_dataset",
     "to_dataset",
     "write_netcdf",
@@ -68,7 +72,10 @@ COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
 
 # name -> (long_name, comment or None) of the per-event variables
 EVENT_VARIABLES = {
-    "t": ("time of the event", None),
+    "t": ("time of the event",
+          "correctly rounded sum of the exact durations tau of all phases up to the event (compensated "
+          "sum): a phase shorter than half an ulp of t leaves t unchanged, so consecutive event times "
+          "may coincide (late in very long runs, or at a chattering sticky onset) while tau stays exact"),
     "tau": ("duration of the phase (flight or sticky phase) ending at the event",
             "time since the previous event, or since t = 0 for the first one; exact, "
             "whereas differences of t are rounded"),
@@ -365,19 +372,35 @@ def _probe_writable(directory: Path) -> None:
 def check_output_path(path) -> Path:
     """Check that a file can be written at ``path``; return it as a Path.
 
-    Raises FileNotFoundError (the directory does not exist), NotADirectoryError
-    (its parent is not a directory), IsADirectoryError (``path`` is a
-    directory) or PermissionError (the directory is not writable), each with a
+    Only two kinds of target are accepted: a new name in an existing, writable
+    directory, or an existing regular file (replaced atomically).  Raises
+    FileNotFoundError (the directory does not exist), NotADirectoryError (its
+    parent is not a directory), IsADirectoryError (``path`` is, or is spelled
+    as, a directory: ``dir/``, ``dir/.``), FileExistsError (``path`` is a
+    symbolic link, dangling or not, a FIFO, a device or a socket: replacing it
+    by a regular file would destroy it, and a link would be replaced rather than
+    its target) or PermissionError (the directory is not writable), each with a
     message naming the path.
     """
-    path = Path(os.fspath(path))
-    if path.name in ("", ".", "..") or path.is_dir():
-        raise IsADirectoryError(f"output path {str(path)!r} is a directory, not a file")
+    text = os.fspath(path)
+    path = Path(text)
+    tail = os.path.basename(text.rstrip("/")) if text.endswith("/") else os.path.basename(text)
+    if text.endswith("/") or tail in ("", ".", "..") or path.is_dir():
+        raise IsADirectoryError(f"output path {text!r} is a directory, not a file")
     parent = path.parent
     if not parent.exists():
         raise FileNotFoundError(f"output directory {str(parent)!r} does not exist")
     if not parent.is_dir():
         raise NotADirectoryError(f"output directory {str(parent)!r} is not a directory")
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode):
+        what = "a symbolic link" if stat.S_ISLNK(mode) else "not a regular file (a FIFO, device or socket)"
+        raise FileExistsError(
+            f"output path {text!r} exists and is {what}: only a new file or an existing regular file is replaced"
+        )
     try:
         _probe_writable(parent)
     except OSError as exc:
@@ -385,6 +408,58 @@ def check_output_path(path) -> Path:
             f"output directory {str(parent)!r} is not writable ({exc.strerror or exc})"
         ) from None
     return path
+
+
+#: temporary files are ``.NAME.<pid>.<12 hex>.bounce-tmp`` next to the target
+_TMP_SUFFIX = ".bounce-tmp"
+
+
+def _tmp_pattern(path: Path) -> re.Pattern:
+    return re.compile(re.escape(f".{path.name}.") + r"(\d+)\.[0-9a-f]{12}" + re.escape(_TMP_SUFFIX) + "$")
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # exists, owned by someone else
+        return True
+    return True
+
+
+def remove_stale_temporaries(path) -> list[Path]:
+    """Remove temporary files of earlier writes to ``path`` whose process is gone (killed by SIGKILL,
+    power loss); a temporary of a live process (a concurrent write) is kept.  Returns those removed."""
+    path = Path(path)
+    pattern = _tmp_pattern(path)
+    removed = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(path.parent):
+            match = pattern.match(entry.name)
+            if match and entry.is_file(follow_symlinks=False) and not _pid_alive(int(match.group(1))):
+                with contextlib.suppress(OSError):
+                    os.unlink(entry.path)
+                    removed.append(Path(entry.path))
+    return removed
+
+
+def _free_bytes(directory: Path) -> int:
+    st = os.statvfs(directory)
+    return st.f_bavail * st.f_frsize
+
+
+def _disk_full(directory: Path, exc: BaseException) -> bool:
+    """Was the failure a full disk?  ENOSPC/EDQUOT, or a library error (netCDF reports the bare
+    "NetCDF: HDF error") while the file system has (almost) no space left."""
+    if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT):
+        return True
+    if not isinstance(exc, (OSError, RuntimeError)):
+        return False
+    try:
+        return _free_bytes(directory) < 1 << 20
+    except OSError:
+        return False
 
 
 def _encoding(ds: xr.Dataset) -> dict:
@@ -401,23 +476,32 @@ def _encoding(ds: xr.Dataset) -> dict:
 def write_netcdf(ds: xr.Dataset, path) -> Path:
     """Write ``ds`` to ``path`` atomically (netCDF4/HDF5, float64, zlib); return the path.
 
-    The file is written to a temporary file in the same directory, flushed to
-    disk and moved into place with ``os.replace``: readers see either the old
-    file or the complete new one, and on any failure no file (and no temporary
-    file) is left behind.  The parent directory must exist and be writable
-    (see :func:`check_output_path`).
+    The file is written to a temporary file ``.NAME.<pid>.<hex>.bounce-tmp`` in
+    the same directory, flushed to disk and moved into place with
+    ``os.replace``: readers see either the old file or the complete new one, and
+    on any failure (also KeyboardInterrupt, and SIGTERM when the CLI's handler
+    turns it into an exception) no temporary file is left behind.  A temporary
+    left by a process killed outright (SIGKILL) is recognised by its name and
+    dead pid and removed by the next write to the same target.  A full disk is
+    reported as such (OSError ENOSPC, saying the old file is kept).  The target
+    must pass :func:`check_output_path`.
     """
     path = check_output_path(path)
-    tmp = path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}.tmp"
+    remove_stale_temporaries(path)
+    tmp = path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{_TMP_SUFFIX}"
     try:
         ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4",
                      encoding=_encoding(ds), unlimited_dims=())
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if _disk_full(path.parent, exc):
+            kept = "the old file is kept unchanged" if path.exists() else "no file was written"
+            raise OSError(errno.ENOSPC, f"No space left on device (disk full) in {str(path.parent)!r} while "
+                                        f"writing {str(path)!r}; {kept}") from exc
         raise
     with contextlib.suppress(OSError):  # persist the rename (best effort)
         dir_fd = os.open(path.parent, os.O_RDONLY)

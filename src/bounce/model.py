@@ -26,11 +26,23 @@ from .springs import LINEAR, SpringLaw
 def _finite(name: str, value: float) -> float:
     try:
         value = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a finite number, got {value!r}") from None
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"{name} must be a finite number (allowed range: (-inf, inf)), got {value!r}") from None
     if not math.isfinite(value):
-        raise InputError(f"{name} must be a finite number, got {value!r}")
+        raise InputError(f"{name} must be a finite number (allowed range: (-inf, inf)), got {value!r}")
     return value
+
+
+def _check_floor(x: float, xdot: float) -> None:
+    """The lower mass starts on or above the floor, and not moving into it."""
+    if x < 0.0:
+        raise InputError(f"x0 must be >= 0 (allowed range: [0, inf); the lower mass cannot start below the floor), "
+                         f"got {x!r}")
+    if x == 0.0 and xdot < 0.0:
+        raise InputError(
+            f"xdot0 must be >= 0 when x0 = 0 (allowed range: [0, inf); a state on the floor moving down is below it "
+            f"an instant later), got {xdot!r}"
+        )
 
 
 @dataclass(frozen=True)
@@ -86,13 +98,7 @@ class State:
     def __post_init__(self) -> None:
         for name, suffix in (("x", "x0"), ("xdot", "xdot0"), ("y", "y0"), ("ydot", "ydot0")):
             object.__setattr__(self, name, _finite(suffix, getattr(self, name)))
-        if self.x < 0.0:
-            raise InputError(f"x0 must be >= 0 (the lower mass cannot start below the floor), got {self.x!r}")
-        if self.x == 0.0 and self.xdot < 0.0:
-            raise InputError(
-                f"xdot0 must be >= 0 when x0 = 0 (a state on the floor moving down is below it an instant later), "
-                f"got {self.xdot!r}"
-            )
+        _check_floor(self.x, self.xdot)
 
     @classmethod
     def from_psi_xi(cls, psi: float, psidot: float, xi: float, xidot: float) -> "State":
@@ -147,7 +153,7 @@ class Deviations:
     def __post_init__(self) -> None:
         for name in ("x", "xdot", "xidot", "eta"):
             object.__setattr__(self, name, _finite(name + "0", getattr(self, name)))
-        State(self.x, self.xdot, 1.0, 0.0)  # same floor checks as a State
+        _check_floor(self.x, self.xdot)  # same floor checks as a State
 
     def deviations(self, params: Parameters) -> "Deviations":
         return self
@@ -157,4 +163,78 @@ class Deviations:
         return State(
             x=self.x, xdot=self.xdot, y=params.y_eq + self.x + 2.0 * self.eta,
             ydot=self.xdot + 2.0 * self.xidot,
+        )
+
+
+# --------------------------------------------------------------------------- supported domain of the simulator
+
+#: gamma < 1/2: the static equilibrium y_eq = 1 - 2 gamma of the upper mass lies above the floor.
+GAMMA_MAX = 0.5
+#: smallest gamma simulated: below it even a drop of one rest length spans more than ~1e6 spring periods.
+GAMMA_MIN = 1e-12
+#: largest damping simulated (the stiff oscillator's rates 1/(2 mu) and 2 mu stay 1e16 apart at most).
+MU_MAX = 1e8
+#: longest flight (in units sqrt(m/2k)) the root finder is asked to follow: it resolves every spring
+#: oscillation in a flight, so its work grows with the flight's length.
+FLIGHT_MAX = 1e8
+
+
+def check_physical(state: State) -> None:
+    """The upper mass above the lower one: y0 > x0 (so y0 > 0), a spring of positive length.
+
+    The linear model itself (and :class:`State`) is defined for every spring length, and
+    tests of the paper's remarks use such states; the command line refuses them.
+    """
+    if not state.y > state.x:
+        raise InputError(
+            f"y0 must be > x0 = {state.x!r} (allowed range: (x0, inf)): the upper mass sits above the lower "
+            f"one, the spring's length y - x = 1 + 2 xi must be positive, got {state.y!r}"
+        )
+
+
+def flight_bound(gamma: float, energy_excess: float) -> float:
+    """Upper bound on every flight's duration from E - E_m (energy never increases).
+
+    In flight psi'' = -gamma and |psi'| <= V = sqrt(2 (E - E_m)), the spring's deviation
+    |eta| <= V and gamma x <= E - E_m, so x = psi - xi > 0 cannot last beyond the root of
+    V T - gamma T^2/2 + x0 + 2 V = 0: T <= (V + sqrt(V^2 + 2 gamma x0 + 4 gamma V))/gamma.
+    """
+    v = math.sqrt(2.0 * energy_excess)
+    return (v + math.sqrt(2.0 * v * v + 4.0 * gamma * v)) / gamma
+
+
+def check_supported(params: Parameters, start: "Deviations") -> None:
+    """Refuse, with the supported range and why, what the simulator cannot follow to rounding.
+
+    Every accepted input gives finite results: gamma in [GAMMA_MIN, GAMMA_MAX), mu in [0, MU_MAX],
+    and an initial energy whose longest possible flight (:func:`flight_bound`) is at most
+    FLIGHT_MAX (this also bounds every height, speed and time by ~1e16, far from overflow).
+    """
+    gamma, mu = params.gamma, params.mu
+    if not gamma < GAMMA_MAX:
+        raise InputError(
+            f"gamma must be < {GAMMA_MAX} (supported range: [{GAMMA_MIN:g}, {GAMMA_MAX})): for gamma >= 1/2 the "
+            f"static equilibrium y_eq = 1 - 2 gamma of the upper mass is at or below the floor), got {gamma!r}"
+        )
+    if not gamma >= GAMMA_MIN:
+        raise InputError(
+            f"gamma must be >= {GAMMA_MIN:g} (supported range: [{GAMMA_MIN:g}, {GAMMA_MAX})): below it a drop of "
+            f"one rest length lasts more than ~1e6 spring periods, each of which the root finder resolves), "
+            f"got {gamma!r}"
+        )
+    if not mu <= MU_MAX:
+        raise InputError(
+            f"mu must be <= {MU_MAX:g} (supported range: [0, {MU_MAX:g}]: the range in which the spring's "
+            f"closed forms, whose two rates 1/(2 mu) and 2 mu are then 4e16 apart, are verified against the "
+            f"high-precision reference), got {mu!r}"
+        )
+    psidot = start.xdot + start.xidot
+    excess = 0.5 * (start.xidot * start.xidot + psidot * psidot + start.eta * start.eta) + gamma * start.x  # inf, no raise
+    longest = flight_bound(gamma, excess) if math.isfinite(excess) else math.inf
+    if not longest <= FLIGHT_MAX:
+        raise InputError(
+            f"initial state (x0 xdot0 y0 ydot0, or psi0 psidot0 xi0 xidot0): its energy E - E_m = {excess:.3g} allows flights up to "
+            f"{longest:.3g} time units long at gamma = {gamma!r} (supported range: flights <= {FLIGHT_MAX:g}, "
+            f"about E - E_m <= (gamma {FLIGHT_MAX:g})^2/12 = {(FLIGHT_MAX * gamma) ** 2 / 12:.3g}): the root "
+            f"finder resolves every spring oscillation of a flight"
         )

@@ -24,13 +24,24 @@ directly from their Taylor series, whose coefficients come from the recurrence
 Every coefficient obeys ``|z_k| <= (3k+1) rho^k / k!`` (the roots r1, r2 of
 r^2 + 2 mu r + 1 have |r| <= rho), which gives a rigorous truncation rule: stop
 once the tail bound is below 2^-55 of every sum; the degree this needs is
-tabulated per oscillator against q, so the hot loop is a branch-free Horner sum.  For q > SERIES_Q the
-closed forms are used (under-, critically and over-damped) and the small parts
-are formed by subtraction, which then loses at most a factor ~ e^q / q^2 < 4.
+tabulated per oscillator against q, so the hot loop is a branch-free Horner sum.
 
-The over-damped closed form is written with the slow and fast rates
-``lam_slow = 1/(mu + kappa)`` and ``lam_fast = mu + kappa`` (kappa = sqrt(mu^2-1)),
-so nothing overflows for long flights and everything is continuous across mu = 1.
+For q > SERIES_Q the closed forms are used (under-, critically and over-damped),
+and the small parts are *not* formed as 1 - c etc.: with strong over-damping c
+stays within ~1/mu^2 of 1 long after rho t = 2 (the slow mode decays at rate
+~1/(2 mu)), and 1 - c would lose a factor mu^2 (4e-4 relative at mu = 1e6).
+They are written with ``expm1`` of each root and of their difference,
+e.g. (over-damped, slow and fast rates ``lam_slow = 1/(mu + kappa)``,
+``lam_fast = mu + kappa``, kappa = sqrt(mu^2-1))
+
+    1 - c  = -expm1(-lam_slow t) - lam_slow e^{-lam_slow t} sh,
+    1 - S' = -expm1(-lam_slow t) + lam_fast e^{-lam_slow t} sh,
+    sh     = -expm1(-2 kappa t) / (2 kappa) = e^{-kappa t} sinh(kappa t)/kappa,
+
+sums of terms whose cancellation is bounded by a factor ~2 for rho t > SERIES_Q,
+so the small parts keep a few ulps relative to themselves for every mu >= 0
+(checked against mpmath for mu up to 1e8 in tests/test_edges.py).  Nothing
+overflows for long flights and everything is continuous across mu = 1.
 
 An oscillator is a pair of arrays ``(params, coefs)`` made once per damping by
 :func:`make_oscillator`; the numba kernels take the two arrays.
@@ -50,7 +61,7 @@ N_COEFS = 48
 SERIES_Q = 2.0
 
 # layout of the ``params`` array
-P_MU, P_RHO, P_BRANCH, P_FREQ, P_LSLOW, P_LFAST = range(6)
+P_MU, P_RHO, P_BRANCH, P_FREQ, P_LSLOW, P_LFAST, P_TSCALE = range(7)
 UNDER, CRITICAL, OVER = 0.0, 1.0, 2.0
 
 
@@ -72,10 +83,12 @@ def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
 
     Returns ``(params, coefs)``: ``params`` holds mu, rho, the branch (0 under-,
     1 critically, 2 over-damped), omega = sqrt(1-mu^2) or kappa = sqrt(mu^2-1),
-    and the over-damped rates; ``coefs[j, k]`` multiplies t^k in the Taylor series
-    of omc (j = 0), tms (j = 1) and omsd (j = 2); ``coefs[3, K]`` is the largest
-    q = rho t for which truncating after t^K meets the tail rule (see
-    :func:`_degree_thresholds`).
+    the over-damped rates and the time scale sigma = 2^round(log2 rho);
+    ``coefs[j, k]`` multiplies (sigma t)^k in the Taylor series of omc (j = 0),
+    tms (j = 1) and omsd (j = 2); ``coefs[3, K]`` is the largest q = rho t for
+    which truncating after t^K meets the tail rule (see :func:`_degree_thresholds`).
+    Scaling t by a power of two is exact and keeps the coefficients ~1/k!
+    (unscaled, rho^k/k! overflows for mu > 2e7).
     """
     mu = float(mu)
     if not (mu >= 0.0 and math.isfinite(mu)):
@@ -91,13 +104,16 @@ def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
         lfast = mu + freq
         lslow = 1.0 / lfast  # = mu - kappa, without cancellation
         rho = lfast
-    params = np.array([mu, rho, branch, freq, lslow, lfast], dtype=np.float64)
+    sigma = 2.0 ** round(math.log2(rho))
+    params = np.array([mu, rho, branch, freq, lslow, lfast, sigma], dtype=np.float64)
 
     def series(z0: float, z1: float) -> np.ndarray:
+        """Taylor coefficients of z in the scaled time sigma t (z_k / sigma^k)."""
         z = np.zeros(N_COEFS + 1)
-        z[0], z[1] = z0, z1
+        z[0], z[1] = z0, z1 / sigma
+        m = mu / sigma
         for k in range(N_COEFS - 1):
-            z[k + 2] = (-2.0 * mu * (k + 1) * z[k + 1] - z[k]) / ((k + 2) * (k + 1))
+            z[k + 2] = (-2.0 * m * (k + 1) * z[k + 1] - z[k] / sigma**2) / ((k + 2) * (k + 1))
         return z
 
     c, s = series(1.0, 0.0), series(0.0, 1.0)
@@ -105,12 +121,12 @@ def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
     coefs[0, 2:] = -c[2:N_COEFS]  # 1 - c
     coefs[1, 2:] = -s[2:N_COEFS]  # t - S
     k = np.arange(1, N_COEFS)
-    coefs[2, 1:] = -(k + 1) * s[2 : N_COEFS + 1]  # 1 - S'  (S' = sum (k+1) s_{k+1} t^k)
-    coefs[3] = _degree_thresholds(rho, coefs[:3])
+    coefs[2, 1:] = -(k + 1) * s[2 : N_COEFS + 1] * sigma  # 1 - S'  (S' = sum (k+1) s_{k+1} t^k)
+    coefs[3] = _degree_thresholds(rho, sigma, coefs[:3])
     return params, coefs
 
 
-def _degree_thresholds(rho: float, coefs: np.ndarray) -> np.ndarray:
+def _degree_thresholds(rho: float, sigma: float, coefs: np.ndarray) -> np.ndarray:
     """For each degree K, the largest q = rho t up to which the series may stop at t^K.
 
     Rule: the tail after t^K, bounded by 2 (3K+4) q^(K+1) / (K+1)! (valid for
@@ -120,7 +136,7 @@ def _degree_thresholds(rho: float, coefs: np.ndarray) -> np.ndarray:
     with all N_COEFS terms).
     """
     q = np.geomspace(1e-14, SERIES_Q, 600)
-    t = q / rho
+    t = q / rho * sigma  # the scaled time of the coefficients
     powers = t[:, None] ** np.arange(N_COEFS)[None, :]
     smallest = np.min(np.abs(powers @ coefs.T), axis=1)
     thresholds = np.zeros(N_COEFS)
@@ -136,41 +152,65 @@ def _degree_thresholds(rho: float, coefs: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
-def _series_parts(t, rho, coefs):
-    """Taylor sums of (1-c, t-S, 1-S') at t, truncated at the degree the tail rule allows."""
+def _series_parts(t, rho, sigma, coefs):
+    """Taylor sums of (1-c, t-S, 1-S') at t, truncated at the degree the tail rule allows
+    (Horner in the exactly scaled time sigma t)."""
     q = rho * t
     K = 2
     while q > coefs[3, K]:
         K += 1
+    ts = sigma * t
     omc = 0.0
     tms = 0.0
     omsd = 0.0
     for k in range(K, 0, -1):
-        omc = omc * t + coefs[0, k]
-        tms = tms * t + coefs[1, k]
-        omsd = omsd * t + coefs[2, k]
-    return omc * t, tms * t, omsd * t
+        omc = omc * ts + coefs[0, k]
+        tms = tms * ts + coefs[1, k]
+        omsd = omsd * ts + coefs[2, k]
+    return omc * ts, tms * ts, omsd * ts
 
 
 @njit(cache=True)
 def _closed_form(t, params):
-    """c, S, S' from the closed forms (under-, critically, over-damped)."""
+    """(1-c, t-S, 1-S', c, S, S') from the closed forms, for rho t > SERIES_Q.
+
+    Each small part is a sum of terms that cancel at most by a factor ~2 there
+    (expm1 of each rate, no 1 - c): a few ulps relative to itself for every mu.
+    """
     mu = params[P_MU]
     branch = params[P_BRANCH]
     if branch == UNDER:
         w = params[P_FREQ]
         e = math.exp(-mu * t)
+        decay = -math.expm1(-mu * t)  # 1 - e^{-mu t}
         sn = math.sin(w * t) / w
         cs = math.cos(w * t)
-        return e * (cs + mu * sn), e * sn, e * (cs - mu * sn)
+        vers = 2.0 * math.sin(0.5 * w * t) ** 2  # 1 - cos(w t)
+        c, S, Sd = e * (cs + mu * sn), e * sn, e * (cs - mu * sn)
+        return decay + e * (vers - mu * sn), t - S, decay + e * (vers + mu * sn), c, S, Sd
     if branch == CRITICAL:
         e = math.exp(-t)
-        return (1.0 + t) * e, t * e, (1.0 - t) * e
+        decay = -math.expm1(-t)
+        return decay - t * e, t - t * e, decay + t * e, (1.0 + t) * e, t * e, (1.0 - t) * e
     k = params[P_FREQ]
-    e1 = math.exp(-params[P_LSLOW] * t)
-    sh = -math.expm1(-2.0 * k * t) / (2.0 * k)  # e^{-kt} sinh(kt)/k
-    ch = 0.5 * (1.0 + math.exp(-2.0 * k * t))  # e^{-kt} cosh(kt)
-    return e1 * (ch + mu * sh), e1 * sh, e1 * (ch - mu * sh)
+    ls = params[P_LSLOW]
+    lf = params[P_LFAST]
+    e1 = math.exp(-ls * t)
+    decay = -math.expm1(-ls * t)  # 1 - e^{-lam_slow t}
+    em = math.expm1(-2.0 * k * t)
+    sh = -em / (2.0 * k)  # e^{-kt} sinh(kt)/k
+    # c = e1 (lam_fast - lam_slow w)/(2 kappa), w = e^{-2 kappa t}: no cancellation
+    c = e1 * (0.5 * (2.0 + em) + mu * sh)
+    S = e1 * sh
+    # S' = e1 (lam_fast w - lam_slow)/(2 kappa) = e1 (1 - lam_fast sh): the first form is exact
+    # in sign and digits away from mu ~ 1, the second near it (kappa -> 0)
+    if 2.0 * k >= 1.0:
+        Sd = e1 * (lf * math.exp(-2.0 * k * t) - ls) / (2.0 * k)
+    else:
+        Sd = e1 * (1.0 - lf * sh)
+    # 1 - c = (1 - e1) + e1 (1 - (lam_fast - lam_slow w)/(2 kappa)) = decay - lam_slow e1 sh
+    # 1 - S' = (1 - e1) + e1 lam_fast sh  (both terms >= 0)
+    return decay - ls * S, t - S, decay + lf * S, c, S, Sd
 
 
 @njit(cache=True)
@@ -178,11 +218,11 @@ def fundamental(t, params, coefs):
     """Return ``(omc, tms, omsd, c, S, Sd)`` at time t >= 0.
 
     omc = 1 - c(t), tms = t - S(t), omsd = 1 - S'(t) are accurate to a few ulps
-    *relative to themselves* for short times (Taylor branch) and to a few ulps
-    of O(1) for long ones; c, S, Sd = S' are accurate to a few ulps.
+    *relative to themselves* for every t and mu >= 0 (Taylor branch for rho t <=
+    SERIES_Q, expm1 closed forms beyond); c, S, Sd = S' to a few ulps of their
+    envelope e^{-lam_slow t} (relative, away from their zeros).
     """
     if params[P_RHO] * t <= SERIES_Q:
-        omc, tms, omsd = _series_parts(t, params[P_RHO], coefs)
+        omc, tms, omsd = _series_parts(t, params[P_RHO], params[P_TSCALE], coefs)
         return omc, tms, omsd, 1.0 - omc, t - tms, 1.0 - omsd
-    c, S, Sd = _closed_form(t, params)
-    return 1.0 - c, t - S, 1.0 - Sd, c, S, Sd
+    return _closed_form(t, params)

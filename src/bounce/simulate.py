@@ -15,10 +15,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .events import KIND_NAMES, STOP_FAILED, STOP_NAMES, run_events
-from .model import Deviations, InputError, Parameters, State
+from .model import Deviations, InputError, Parameters, State, check_supported
 from .oscillator import make_oscillator
 
 SQRT2 = math.sqrt(2.0)
+#: memory of one event record (six float64 arrays and the int8 kind)
+BYTES_PER_EVENT = 6 * 8 + 1
+#: most events one call records (the buffers are allocated up front)
+MAX_EVENTS = 10**10
 
 #: spring laws (bounce.springs) the closed-form flights of bounce.flight solve
 EXACT_LAWS = ("linear",)
@@ -79,10 +83,14 @@ class Trajectory:
         return len(self.t)
 
 
-def _positive_int(name: str, value) -> int:
-    if isinstance(value, bool) or not float(value).is_integer() or int(value) < 1:
-        raise InputError(f"{name} must be an integer >= 1, got {value!r}")
-    return int(value)
+def _positive_int(name: str, value, largest: int) -> int:
+    try:
+        number = float(value)
+    except (TypeError, ValueError, OverflowError):
+        number = math.nan
+    if isinstance(value, bool) or not (number.is_integer() and 1 <= number <= largest):
+        raise InputError(f"{name} must be an integer in [1, {largest:.0e}] (allowed range), got {value!r}")
+    return int(number)
 
 
 def simulate(
@@ -101,16 +109,17 @@ def simulate(
         raise InputError(
             f"the closed-form exact solver supports the spring laws {EXACT_LAWS}, got {params.spring.name!r}"
         )
-    max_events = _positive_int("events", max_events)
+    max_events = _positive_int("events", max_events, MAX_EVENTS)
     t_max = float(t_max)
     if math.isnan(t_max) or not t_max > 0.0:
         raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
     energy_stop = float(energy_stop)
     if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
-        raise InputError(f"energy_stop must be a finite number >= 0, got {energy_stop!r}")
+        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    start = initial.deviations(params)
+    check_supported(params, start)
     params_arr, coefs = make_oscillator(params.mu)
     sparams, scoefs = make_oscillator(params.mu / SQRT2)
-    start = initial.deviations(params)
     out = [np.empty(max_events) for _ in range(6)]
     kind = np.empty(max_events, dtype=np.int8)
     n, stop, t_end = run_events(

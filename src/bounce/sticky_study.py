@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .fitting import fit_loglog  # noqa: F401 (one fit; bounce.figures.sticky imports it from here)
 from .io import sample_dataset
 from .model import Parameters, State
 from .simulate import simulate
@@ -76,14 +77,3 @@ def convergence(reference: xr.Dataset, runs: list[xr.Dataset], samples: int) -> 
                "t_c": t_c, "gamma": reference.attrs["gamma"], "mu": reference.attrs["mu"], "samples": int(samples),
                "Conventions": "CF-1.10"},
     )
-
-
-def fit_loglog(x, y):
-    """Least-squares slope and intercept of log y against log x, with the slope's standard error."""
-    lx, ly = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
-    A = np.vstack([lx, np.ones_like(lx)]).T
-    coef, res, *_ = np.linalg.lstsq(A, ly, rcond=None)
-    dof = max(lx.size - 2, 1)
-    sigma2 = float(res[0]) / dof if res.size else 0.0
-    cov = sigma2 * np.linalg.inv(A.T @ A)
-    return float(coef[0]), float(coef[1]), float(np.sqrt(cov[0, 0]))

@@ -58,7 +58,7 @@ def _report(args) -> None:
 
     figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
     meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
-    write(args.inputs, figures, args.out[0], args.out[1], args.spec.get("groups", {}), meta)
+    write(args.inputs, figures, args.out[0], args.out[1], args.spec["subjects"], meta)
 
 
 def _study(args) -> None:

@@ -1,11 +1,22 @@
-"""Stage 4: every checkable claim of the paper as a check -> results/checks/<name>.nc (numbers and
-verdicts) + fig-<name>.{png,pdf}; then the validation report."""
+"""Stage 4: every checkable claim of the paper, one claim group per rule -> results/checks/<name>.nc
+(numbers and verdicts) + fig-<name>.{png,pdf}; then the validation report.  A group reads only the
+datasets it declares (config `checks.<name>.inputs`)."""
+
+
+#: named groups of datasets a claim group may list in its `inputs` (every other name is results/data/<name>.nc)
+DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
+
+
+def check_inputs(w):
+    """The datasets a claim group declares in config `checks.<name>.inputs`, in order."""
+    return [f for name in config["checks"][w.name]["inputs"]
+            for f in DATASET_GROUPS.get(name, [f"results/data/{name}.nc"])]
 
 
 rule check:
-    """Run one validation check of config `checks` on the scene datasets it names."""
+    """Run one claim group of config `checks` on the datasets it declares."""
     input:
-        lambda w: [f"results/data/{scene}.nc" for scene in config["checks"][w.name].get("inputs", [])],
+        check_inputs,
     output:
         nc="results/checks/{name}.nc",
         png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),

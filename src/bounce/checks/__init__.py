@@ -1,6 +1,7 @@
-"""Validation checks, one module per claim group; discovered by their ``CHECK`` attribute.
+"""The paper's claims, one module per claim group; a group is discovered by its ``CHECK`` attribute.
 
-See :mod:`bounce.checks.base` for the contract.
+Each group lists its claims in ``CLAIMS`` (small functions, or declarative entries, with their kind
+and subject as data); see :mod:`bounce.checks.base` for the contract.  No module here imports another.
 """
 
 from __future__ import annotations

@@ -1,21 +1,37 @@
-"""The contract of a validation check (issue: every checkable claim of the paper).
+"""Claims as a list: the contract of a claim group (one module of ``bounce.checks``).
 
-A check module in ``bounce.checks`` defines ``CHECK = Check(name, run, plot)``:
+Modelled on scikit-learn's estimator checks: one small function per property, collected in a
+list, each returning one verdict (or one per input scene), with what the claim *is* kept as data:
 
-1. ``run(spec, inputs) -> xr.Dataset``: ``spec`` is its config slice
-   (``config["checks"][name]``), ``inputs`` the scene datasets it names.  It
-   returns the measured numbers as variables (units, long_name) *and* the
-   verdict table made by :func:`verdict_dataset`.
-2. ``plot(ds, spec, outputs)`` draws the figure that backs the verdicts from the
-   dataset alone, saving to every path in ``outputs`` (PNG and PDF).
-3. Each verdict compares a measured number with the paper's expectation under a
-   stated tolerance whose origin is said in ``tolerance`` (physics or a measured
-   error budget, never "what passes").  ``not checkable`` says why in ``measured``.
+* ``kind``: ``paper`` (a statement of the paper), ``erratum`` (the paper's text as printed, with
+  the corrected form in the row; its verdict says whether the printed form holds), ``beyond``
+  (ours: rates, corrected forms, consequences the paper does not state) or ``self-test`` (the
+  solver's own classifier or error model);
+* ``subject``: the theorem, lemma, figure or equation the claim backs (an id of config
+  ``report.subjects``); the report groups by it;
+* ``known_failure``: why the verdict is expected to be ``not reproduced`` (an erratum, or a
+  statement of the paper the dynamics contradicts), empty otherwise.  Tests read it.
+
+A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
+
+1. ``measure(spec, inputs) -> m``: ``spec`` is its config slice (``config["checks"][name]``, schema
+   defaults applied), ``inputs`` the datasets it names.  ``m`` carries what the claims need and,
+   as ``m.data``, the measured numbers as an ``xr.Dataset`` (units, long_name) for the figure.
+   Expensive parts may be lazy (``functools.cached_property``) so that one claim runs alone.
+2. each :class:`Claim` in ``CLAIMS``: ``judge(m, spec)`` returns a :class:`Verdict` or a dict
+   label -> Verdict (one per scene); each verdict compares a measured number with the paper's
+   expectation under a stated tolerance whose origin is said in ``tolerance`` (physics or a
+   measured error budget, never "what passes"); ``not checkable`` says why in ``measured``.
+3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone.
+
+No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.theory`,
+fitting in :mod:`bounce.fitting`, mpmath in :mod:`bounce.reference`, experiments shared by several
+claim groups in :mod:`bounce.anomalies`.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, dataclass, fields, replace
 from typing import Callable
 
 import numpy as np
@@ -26,10 +42,13 @@ NOT_REPRODUCED = "not reproduced"
 NOT_CHECKABLE = "not checkable"
 VERDICTS = (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE)
 
+PAPER, ERRATUM, BEYOND, SELF_TEST = "paper", "erratum", "beyond", "self-test"
+KINDS = (PAPER, ERRATUM, BEYOND, SELF_TEST)
+
 
 @dataclass(frozen=True)
 class Verdict:
-    """One row of the validation table."""
+    """One row of the validation table; ``claim_id``, ``kind`` and ``subject`` are stamped by :meth:`Check.verdicts`."""
 
     claim: str
     paper_ref: str  # theorem / lemma / eq. label of the paper
@@ -38,18 +57,81 @@ class Verdict:
     measured: str
     tolerance: str  # value and where it comes from
     verdict: str
+    claim_id: str = ""
+    kind: str = ""
+    subject: str = ""
 
     def __post_init__(self) -> None:
         if self.verdict not in VERDICTS:
             raise ValueError(f"verdict must be one of {VERDICTS}, got {self.verdict!r}")
+        if self.kind and self.kind not in KINDS:
+            raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One checkable property: its id (unique in its group), kind, subject and the function that judges it."""
+
+    id: str
+    kind: str
+    subject: str
+    judge: Callable
+    known_failure: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"claim {self.id}: kind must be one of {KINDS}, got {self.kind!r}")
+        if self.kind == ERRATUM and not self.known_failure:
+            raise ValueError(f"claim {self.id}: an erratum says what is wrong in known_failure")
+
+
+def claim(registry: list, id: str, kind: str, subject: str, known_failure: str = "") -> Callable:
+    """Decorator: append the function as a :class:`Claim` to ``registry`` (the module's ``CLAIMS``)."""
+    def add(fn):
+        registry.append(Claim(id, kind, subject, fn, known_failure))
+        return fn
+    return add
+
+
+def recorded(registry: list, id: str, kind: str, subject: str, known_failure: str = "") -> None:
+    """A declarative claim: its verdict row is recorded by the group's measurement in ``m.rows[id]`` (a Verdict, or
+    a dict label -> Verdict; absent: no row).  For groups whose formulas share one computation step by step."""
+    def from_measurement(m, spec):
+        return m.rows.get(id, {})
+    from_measurement.__name__ = id.replace("-", "_")
+    registry.append(Claim(id, kind, subject, from_measurement, known_failure))
 
 
 @dataclass(frozen=True)
 class Check:
+    """A claim group: its measurements, its claims in order, its figure."""
+
     name: str
-    run: Callable
+    measure: Callable
+    claims: tuple
     plot: Callable
     title: str = ""
+
+    def claim_ids(self) -> list[str]:
+        return [f"{self.name}/{c.id}" for c in self.claims]
+
+    def verdicts(self, m, spec: dict, only: str | None = None) -> list[Verdict]:
+        """The verdict rows of every claim (or of the claim with id ``only``), stamped with id, kind, subject."""
+        rows = []
+        for c in self.claims:
+            if only is not None and c.id != only:
+                continue
+            out = c.judge(m, spec)
+            labelled = out.items() if isinstance(out, dict) else [(None, out)]
+            for label, v in labelled:
+                cid = f"{self.name}/{c.id}" + (f"[{label}]" if label is not None else "")
+                rows.append(replace(v, claim_id=cid, kind=c.kind, subject=c.subject))
+        return rows
+
+    def run(self, spec: dict, inputs) -> xr.Dataset:
+        """Measure, judge every claim, and return the numbers with the verdict table."""
+        m = self.measure(spec, inputs)
+        return verdict_dataset(self.verdicts(m, spec), m.data, title=self.title)
 
 
 def judge(ok: bool) -> str:

@@ -28,181 +28,79 @@ from __future__ import annotations
 
 import math
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import xarray as xr
 
-from .asymptotics import sticky_modes
-from .base import NOT_CHECKABLE, Check, Verdict, judge, verdict_dataset
+from ..fitting import fit_rate
+from ..flight import EPS
+from ..theory import E_min, energy_prefactor, equilibrium_rates, tot_mech_energy
+from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
 
 NAME = "static-equilibrium"
-EPS = 2.0**-52
-
-DEFAULTS = {
-    "monotone_ulps": 16,  # rounding budget of E - E_m between two records, in units of eps
-    "asymptotic_min_events": 100000,  # rates are fitted only on scenes this long
-    "rate_sigmas": 3.0,
-    "rate_floor": 0.01,  # relative; see the tolerance text
-    "limit_bracket": 1e-3,  # (E_N - E_m)/|E_m| must be below this: the limit pinned to 0.1 %
-    "prefactor_tolerance": 1e-3,  # plus the spring share, see the row
-    "plot_points": 400,
-}
-
-
-def _cfg(spec):
-    cfg = dict(DEFAULTS)
-    cfg.update({k: v for k, v in (spec or {}).items()})
-    return cfg
-
 
 def energy_formula(ds) -> np.ndarray:
     """E at the events from eq. tot-mech-energy (x = 0: psi = xi = eta - gamma)."""
     gamma = float(ds.attrs["gamma"])
     xidot, eta, xdot = ds["xidot"].values, ds["eta"].values, ds["xdot"].values
-    xi = eta - gamma
-    psidot = xdot + xidot
-    return 0.5 * xidot**2 + 0.5 * xi**2 + 0.5 * psidot**2 + gamma * xi
+    return tot_mech_energy(eta - gamma, xidot, xdot + xidot, gamma)
 
 
-def rates_theory(mu: float) -> dict:
-    _, lam, _ = sticky_modes(mu)
-    return {"energy": min(2.0 * mu / 3.0, 2.0 * lam), "xdot": mu / 3.0, "spring": lam}
+def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
+    """Everything the claims need from one scene dataset (event records, x = 0 at every event)."""
+    name = str(ds.attrs.get("scene", f"input{i}"))
+    gamma, mu = float(ds.attrs["gamma"]), float(ds.attrs["mu"])
+    n = (ds["event"].values + 1).astype(float) if "event" in ds.coords else np.arange(1.0, ds.sizes["event"] + 1)
+    nsim = int(ds.attrs.get("n_events_simulated", len(n)))
+    t = ds["t"].values
+    e = ds["energy_excess"].values
+    xdot = ds["xdot"].values
+    ydot = ds["ydot"].values if "ydot" in ds else xdot + 2 * ds["xidot"].values
+    w = 2.0 * ds["eta"].values  # y - y_eq at x = 0
+    spring = np.sqrt(w**2 + 2.0 * ydot**2)
+    rel = np.diff(e) / e[:-1]
+    E = energy_formula(ds)
+    Em = E_min(gamma)
+    asym = nsim >= int(spec["asymptotic_min_events"])
+    sel = n > n[-1] / 10.0
+    return SimpleNamespace(
+        name=name, gamma=gamma, mu=mu, n=n, nsim=nsim, t=t, e=e, xdot=xdot, spring=spring, rel=rel,
+        ctx=f"scene {name} (gamma = {gamma:g}, mu = {mu:g}, {nsim} events)",
+        max_inc=float(np.max(rel)) if rel.size else math.nan, Em=Em, E_N=float(E[-1]),
+        gap=float(np.max(np.abs((E - Em) - e)) / gamma**2), asym=asym, sel=sel, theory=equilibrium_rates(mu),
+        rates={"energy": fit_rate(t, e, n), "xdot": fit_rate(t, xdot, n), "spring": fit_rate(t, spring, n)},
+        prefactor=float(np.median(n[sel] ** 2 * e[sel] / energy_prefactor(gamma, mu))) if asym else math.nan)
 
 
-def _decade_rate(t, v, n, hi_n):
-    sel = (n > hi_n / 10.0) & (n <= hi_n) & (v > 0) & np.isfinite(v)
-    if sel.sum() < 10:
-        return math.nan
-    return -float(np.polyfit(t[sel] - t[sel][0], np.log(v[sel]), 1)[0])
-
-
-def fit_rate(t, v, n):
-    """Decay rate of v in t on the last decade of n, and its change from the previous decade."""
-    top = float(n[-1])
-    r1 = _decade_rate(t, v, n, top)
-    r0 = _decade_rate(t, v, n, top / 10.0)
-    return r1, (abs(r1 - r0) if math.isfinite(r0) else math.nan)
-
-
-def run(spec: dict, inputs: list) -> xr.Dataset:
+def measure(spec: dict, inputs: list) -> SimpleNamespace:
     t_start = time.perf_counter()
-    cfg = _cfg(spec)
-    verdicts: list[Verdict] = []
-    names, gammas, mus, nsim = [], [], [], []
-    rows = {k: [] for k in ("max_rel_increase", "min_excess", "E_inf", "E_inf_formula_gap", "excess_last",
-                            "rate_energy", "rate_energy_err", "rate_xdot", "rate_xdot_err", "rate_spring",
-                            "rate_spring_err", "prefactor", "xdot_last", "spring_last", "xdot_first", "spring_first")}
-    kp = int(cfg["plot_points"])
-    plot_n = np.full((len(inputs), kp), np.nan)
-    plot_t = np.full((len(inputs), kp), np.nan)
-    plot_e = np.full((len(inputs), kp), np.nan)
-    plot_x = np.full((len(inputs), kp), np.nan)
-    plot_d = np.full((len(inputs), kp), np.nan)
-    plot_inc = np.full((len(inputs), kp), np.nan)
-    for i, ds in enumerate(inputs):
-        name = str(ds.attrs.get("scene", f"input{i}"))
-        gamma, mu = float(ds.attrs["gamma"]), float(ds.attrs["mu"])
-        names.append(name), gammas.append(gamma), mus.append(mu)
-        n = (ds["event"].values + 1).astype(float) if "event" in ds.coords else np.arange(1.0, ds.sizes["event"] + 1)
-        nsim.append(int(ds.attrs.get("n_events_simulated", len(n))))
-        t = ds["t"].values
-        e = ds["energy_excess"].values
-        xdot = ds["xdot"].values
-        ydot = ds["ydot"].values if "ydot" in ds else xdot + 2 * ds["xidot"].values
-        w = 2.0 * ds["eta"].values  # y - y_eq at x = 0
-        spring = np.sqrt(w**2 + 2.0 * ydot**2)
-        ctx = f"scene {name} (gamma = {gamma:g}, mu = {mu:g}, {nsim[-1]} events)"
-        # 1. monotone energy
-        rel = np.diff(e) / e[:-1]
-        max_inc = float(np.max(rel)) if rel.size else math.nan
-        budget = float(cfg["monotone_ulps"]) * EPS
-        rows["max_rel_increase"].append(max_inc)
-        rows["min_excess"].append(float(np.min(e)))
-        verdicts.append(Verdict(
-            f"E never increases and never falls below E_m = -gamma^2/2 [{name}]",
-            "eq. energy-dissipation, eq. Emin", f"{ctx}: (e_(k+1) - e_k)/e_k over consecutive records, e = E - E_m",
-            "max increase <= 0 (to rounding), min e >= 0",
-            f"max (e_(k+1) - e_k)/e_k = {max_inc:.3g}; min e = {np.min(e):.3g}",
-            f"{cfg['monotone_ulps']} eps = {budget:.2g}: e is a sum of three squares from the core state, each "
-            "with a few roundings (<= 4 eps relative), two records compared",
-            judge(max_inc <= budget and float(np.min(e)) >= 0.0)))
-        # 2. E -> E_m
-        E = energy_formula(ds)
-        Em = -0.5 * gamma**2
-        gap = float(np.max(np.abs((E - Em) - e)) / gamma**2)
-        rows["E_inf_formula_gap"].append(gap)
-        rows["excess_last"].append(float(e[-1]))
-        th = rates_theory(mu)
-        asym = nsim[-1] >= int(cfg["asymptotic_min_events"])
-        kappa, kerr = fit_rate(t, e, n)
-        sel = n > n[-1] / 10.0
-        rel_tol = float(cfg["limit_bracket"])
-        E_N = float(E[-1])
-        bracket = (E_N - Em) / abs(Em)
-        verdicts.append(Verdict(
-            f"E -> E_m = -gamma^2/2 [{name}]", "Theorem static-equilibrium, eq. Emin",
-            f"{ctx}: E_N from eq. tot-mech-energy at the last event; E non-increasing and >= E_m (row above) "
-            "bracket lim E in [E_m, E_N]",
-            f"lim E = {Em:.6g}", f"E_N = {E_N:.10g}: (E_N - E_m)/|E_m| = {bracket:.3g}; formula vs stored excess: "
-            f"{gap:.1g} gamma^2", f"(E_N - E_m)/|E_m| <= {rel_tol:g} (the data pin the limit to {rel_tol:g} of E_m) and "
-            "formula = E_m + stored excess to 1e-9 gamma^2 (rounding of O(1) terms early on)",
-            judge(0.0 <= bracket <= rel_tol and gap <= 1e-9)))
-        verdicts.append(Verdict(
-            f"lim E = -gamma/2 (as printed in the proof of Theorem static-equilibrium) [{name}]",
-            "proof of Theorem static-equilibrium", "same bracket [E_m, E_N] of lim E",
-            f"lim E = -gamma/2 = {-gamma / 2:.6g} as printed (erratum candidate: -gamma^2/2 = {Em:.3g}, eq. Emin)",
-            f"lim E in [{Em:.6g}, {E_N:.6g}], i.e. {E_N / (-gamma / 2):.3g} x (-gamma/2)",
-            "-gamma/2 must lie in the bracket (any tolerance below 1 - gamma separates the two)",
-            judge(Em <= -gamma / 2 <= E_N)))
-        rows["E_inf"].append(E_N)
-        # 3. rates
-        rx, rxe = fit_rate(t, xdot, n)
-        rs, rse = fit_rate(t, spring, n)
-        for key, val in (("rate_energy", (kappa, kerr)), ("rate_xdot", (rx, rxe)), ("rate_spring", (rs, rse))):
-            rows[key].append(val[0]), rows[key + "_err"].append(val[1])
-        pref = float(np.median((n[sel] ** 2 * e[sel]) * 4 * mu**2 / (9 * gamma**2))) if asym else math.nan
-        rows["prefactor"].append(pref)
-        rows["xdot_first"].append(float(xdot[0])), rows["spring_first"].append(float(spring[0]))
-        rows["xdot_last"].append(float(xdot[-1])), rows["spring_last"].append(float(spring[-1]))
-        if asym:
-            for label, (r, re_), expect, what in (
-                ("E - E_m", (kappa, kerr), th["energy"], "min(2 mu/3, 2 lam)"),
-                ("Xdot_n", (rx, rxe), th["xdot"], "mu/3"),
-                ("D = sqrt((y - y_eq)^2 + 2 ydot^2)", (rs, rse), th["spring"], "lam")):
-                tol = max(float(cfg["rate_sigmas"]) * re_, float(cfg["rate_floor"]) * expect) if math.isfinite(re_) else math.nan
-                verdicts.append(Verdict(
-                    f"{label} -> 0 exponentially in t at rate {what} [{name}]",
-                    "Theorem static-equilibrium (rate: beyond the paper, from Theorem main_thm and eq. y-eq-sticky)",
-                    f"{ctx}: slope of log({label}) vs t on the last decade of impacts; error = change from the "
-                    "previous decade",
-                    f"rate = {expect:.6g}", f"rate = {r:.6g} +- {re_:.2g} (first {label}: "
-                    f"{(e[0] if label.startswith('E') else xdot[0] if label.startswith('X') else spring[0]):.3g}, "
-                    f"last: {(e[-1] if label.startswith('E') else xdot[-1] if label.startswith('X') else spring[-1]):.3g})",
-                    f"|rate - expected| <= max({cfg['rate_sigmas']:g} x decade change, {cfg['rate_floor']:g} x expected): "
-                    f"the fit ignores corrections O(ln n/n) and the faster modes, which the decade change bounds",
-                    judge(abs(r - expect) <= tol) if math.isfinite(tol) else NOT_CHECKABLE))
-            if mu * mu < 2.0:
-                share = float(np.max(spring[sel] ** 2 / (2.0 * xdot[sel] ** 2)))
-                ptol = float(cfg["prefactor_tolerance"]) + share
-                verdicts.append(Verdict(
-                    f"n^2 (E - E_m) -> 9 gamma^2/(4 mu^2) [{name}]",
-                    "beyond the paper: E - E_m = Xdot^2/4 + D^2/8 at an event, Xdot_n ~ 3 gamma/(mu n) (Theorem main_thm)",
-                    f"{ctx}: median of n^2 (E - E_m) 4 mu^2/(9 gamma^2) over the last decade",
-                    "1", f"{pref:.6f} (spring share D^2/(2 Xdot^2) up to {share:.2g})",
-                    f"|. - 1| <= {ptol:.3g} = {cfg['prefactor_tolerance']:g} (O(ln n/n) corrections of Xdot_n over the "
-                    "decade) + the spring's share of E - E_m, max D^2/(2 Xdot^2) over the decade (it decays faster)",
-                    judge(abs(pref - 1.0) <= ptol)))
-        # plot samples
+    scenes = [_scene(i, ds, spec) for i, ds in enumerate(inputs)]
+    kp = int(spec["plot_points"])
+    plot = {k: np.full((len(scenes), kp), np.nan) for k in ("n", "t", "excess", "xdot", "spring", "increase")}
+    for i, sc in enumerate(scenes):
+        n = sc.n
         idx = np.unique(np.clip(np.searchsorted(n, np.geomspace(1, n[-1], kp)), 0, len(n) - 1))
         m = idx.size
-        plot_n[i, :m], plot_t[i, :m], plot_e[i, :m] = n[idx], t[idx], e[idx]
-        plot_x[i, :m], plot_d[i, :m] = xdot[idx], spring[idx]
+        plot["n"][i, :m], plot["t"][i, :m], plot["excess"][i, :m] = n[idx], sc.t[idx], sc.e[idx]
+        plot["xdot"][i, :m], plot["spring"][i, :m] = sc.xdot[idx], sc.spring[idx]
         # largest relative change of e over the records up to each sample (monotonicity panel)
-        inc = np.concatenate([[np.nan], rel])
-        plot_inc[i, :m] = np.maximum.reduceat(np.nan_to_num(inc, nan=-np.inf), idx)[: m] if m else []
-    data = xr.Dataset(coords={"scene": ("scene", np.array(names, dtype=object), {"long_name": "input scene", "units": "1"})})
-    data["scene_gamma"] = ("scene", np.array(gammas), {"long_name": "gamma", "units": "1"})
-    data["scene_mu"] = ("scene", np.array(mus), {"long_name": "mu", "units": "1"})
+        inc = np.concatenate([[np.nan], sc.rel])
+        plot["increase"][i, :m] = np.maximum.reduceat(np.nan_to_num(inc, nan=-np.inf), idx)[: m] if m else []
+    rows = {
+        "max_rel_increase": [sc.max_inc for sc in scenes], "min_excess": [float(np.min(sc.e)) for sc in scenes],
+        "E_inf": [sc.E_N for sc in scenes], "E_inf_formula_gap": [sc.gap for sc in scenes],
+        "excess_last": [float(sc.e[-1]) for sc in scenes], "prefactor": [sc.prefactor for sc in scenes],
+        "xdot_last": [float(sc.xdot[-1]) for sc in scenes], "spring_last": [float(sc.spring[-1]) for sc in scenes],
+        "xdot_first": [float(sc.xdot[0]) for sc in scenes], "spring_first": [float(sc.spring[0]) for sc in scenes],
+    }
+    for k in ("energy", "xdot", "spring"):
+        rows[f"rate_{k}"] = [sc.rates[k][0] for sc in scenes]
+        rows[f"rate_{k}_err"] = [sc.rates[k][1] for sc in scenes]
+    data = xr.Dataset(coords={"scene": ("scene", np.array([sc.name for sc in scenes], dtype=object),
+                                        {"long_name": "input scene", "units": "1"})})
+    data["scene_gamma"] = ("scene", np.array([sc.gamma for sc in scenes]), {"long_name": "gamma", "units": "1"})
+    data["scene_mu"] = ("scene", np.array([sc.mu for sc in scenes]), {"long_name": "mu", "units": "1"})
     long = {
         "max_rel_increase": "largest relative increase of E - E_m between consecutive records",
         "min_excess": "smallest E - E_m", "E_inf": "E at the last record from eq. tot-mech-energy (upper end of the bracket of lim E)",
@@ -215,20 +113,128 @@ def run(spec: dict, inputs: list) -> xr.Dataset:
         "xdot_first": "xdot after the first event", "xdot_last": "xdot after the last event",
         "spring_first": "sqrt((y-y_eq)^2 + 2 ydot^2) at the first event", "spring_last": "same at the last event",
     }
-    for k, v in rows.items():
-        data[k] = ("scene", np.array(v, dtype=float), {"long_name": long[k], "units": "1"})
-    th = [rates_theory(m) for m in mus]
+    for k in long:
+        data[k] = ("scene", np.array(rows[k], dtype=float), {"long_name": long[k], "units": "1"})
     for k in ("energy", "xdot", "spring"):
-        data[f"rate_{k}_theory"] = ("scene", np.array([x[k] for x in th]), {"long_name": f"predicted decay rate ({k})", "units": "1"})
-    for k, arr, ln in (("n", plot_n, "event index n (1 = first impact) of the plotted samples"),
-                       ("t", plot_t, "time of the plotted samples"), ("excess", plot_e, "E - E_m at the samples"),
-                       ("xdot", plot_x, "xdot after the event"),
-                       ("spring", plot_d, "sqrt((y - y_eq)^2 + 2 ydot^2) at the event"),
-                       ("increase", plot_inc, "largest (e_(k+1) - e_k)/e_k over the records from this sample to the next")):
-        data[f"sample_{k}"] = (("scene", "sample"), arr, {"long_name": ln, "units": "1"})
-    data.attrs.update(check=NAME, monotone_budget=float(cfg["monotone_ulps"]) * EPS,
+        data[f"rate_{k}_theory"] = ("scene", np.array([sc.theory[k] for sc in scenes]),
+                                    {"long_name": f"predicted decay rate ({k})", "units": "1"})
+    for k, ln in (("n", "event index n (1 = first impact) of the plotted samples"),
+                  ("t", "time of the plotted samples"), ("excess", "E - E_m at the samples"),
+                  ("xdot", "xdot after the event"), ("spring", "sqrt((y - y_eq)^2 + 2 ydot^2) at the event"),
+                  ("increase", "largest (e_(k+1) - e_k)/e_k over the records from this sample to the next")):
+        data[f"sample_{k}"] = (("scene", "sample"), plot[k], {"long_name": ln, "units": "1"})
+    data.attrs.update(check=NAME, monotone_budget=float(spec["monotone_ulps"]) * EPS,
                       runtime_s=round(time.perf_counter() - t_start, 2))
-    return verdict_dataset(verdicts, data, title=TITLE)
+    return SimpleNamespace(scenes=scenes, data=data)
+
+
+CLAIMS: list = []
+
+
+@claim(CLAIMS, "energy-non-increasing", PAPER, "thm:static-equilibrium")
+def energy_non_increasing(m, spec) -> dict:
+    budget = float(spec["monotone_ulps"]) * EPS
+    return {sc.name: Verdict(
+        f"E never increases and never falls below E_m = -gamma^2/2 [{sc.name}]",
+        "eq. energy-dissipation, eq. Emin", f"{sc.ctx}: (e_(k+1) - e_k)/e_k over consecutive records, e = E - E_m",
+        "max increase <= 0 (to rounding), min e >= 0",
+        f"max (e_(k+1) - e_k)/e_k = {sc.max_inc:.3g}; min e = {np.min(sc.e):.3g}",
+        f"{spec['monotone_ulps']} eps = {budget:.2g}: e is a sum of three squares from the core state, each "
+        "with a few roundings (<= 4 eps relative), two records compared",
+        judge(sc.max_inc <= budget and float(np.min(sc.e)) >= 0.0)) for sc in m.scenes}
+
+
+@claim(CLAIMS, "energy-limit", PAPER, "thm:static-equilibrium")
+def energy_limit(m, spec) -> dict:
+    rel_tol = float(spec["limit_bracket"])
+    out = {}
+    for sc in m.scenes:
+        bracket = (sc.E_N - sc.Em) / abs(sc.Em)
+        out[sc.name] = Verdict(
+            f"E -> E_m = -gamma^2/2 [{sc.name}]", "Theorem static-equilibrium, eq. Emin",
+            f"{sc.ctx}: E_N from eq. tot-mech-energy at the last event; E non-increasing and >= E_m (row above) "
+            "bracket lim E in [E_m, E_N]",
+            f"lim E = {sc.Em:.6g}", f"E_N = {sc.E_N:.10g}: (E_N - E_m)/|E_m| = {bracket:.3g}; formula vs stored "
+            f"excess: {sc.gap:.1g} gamma^2", f"(E_N - E_m)/|E_m| <= {rel_tol:g} (the data pin the limit to "
+            f"{rel_tol:g} of E_m) and formula = E_m + stored excess to 1e-9 gamma^2 (rounding of O(1) terms early on)",
+            judge(0.0 <= bracket <= rel_tol and sc.gap <= 1e-9))
+    return out
+
+
+@claim(CLAIMS, "printed-energy-limit", ERRATUM, "thm:static-equilibrium",
+       known_failure="the proof prints lim E = -gamma/2; eq. Emin gives -gamma^2/2")
+def printed_energy_limit(m, spec) -> dict:
+    return {sc.name: Verdict(
+        f"lim E = -gamma/2 (as printed in the proof of Theorem static-equilibrium) [{sc.name}]",
+        "proof of Theorem static-equilibrium", "same bracket [E_m, E_N] of lim E",
+        f"lim E = -gamma/2 = {-sc.gamma / 2:.6g} as printed (erratum candidate: -gamma^2/2 = {sc.Em:.3g}, eq. Emin)",
+        f"lim E in [{sc.Em:.6g}, {sc.E_N:.6g}], i.e. {sc.E_N / (-sc.gamma / 2):.3g} x (-gamma/2)",
+        "-gamma/2 must lie in the bracket (any tolerance below 1 - gamma separates the two)",
+        judge(sc.Em <= -sc.gamma / 2 <= sc.E_N)) for sc in m.scenes}
+
+
+RATES = {  # quantity -> (label, what the rate is)
+    "energy": ("E - E_m", "min(2 mu/3, 2 lam)"),
+    "xdot": ("Xdot_n", "mu/3"),
+    "spring": ("D = sqrt((y - y_eq)^2 + 2 ydot^2)", "lam"),
+}
+
+
+def _rate_verdicts(m, spec, key: str) -> dict:
+    """Decay rate of one quantity in t on the last decade, against theory.equilibrium_rates (asymptotic scenes)."""
+    label, what = RATES[key]
+    out = {}
+    for sc in m.scenes:
+        if not sc.asym:
+            continue
+        r, re_ = sc.rates[key]
+        expect = sc.theory[key]
+        v = {"energy": sc.e, "xdot": sc.xdot, "spring": sc.spring}[key]
+        tol = max(float(spec["rate_sigmas"]) * re_, float(spec["rate_floor"]) * expect) if math.isfinite(re_) else math.nan
+        out[sc.name] = Verdict(
+            f"{label} -> 0 exponentially in t at rate {what} [{sc.name}]",
+            "Theorem static-equilibrium (rate: beyond the paper, from Theorem main_thm and eq. y-eq-sticky)",
+            f"{sc.ctx}: slope of log({label}) vs t on the last decade of impacts; error = change from the "
+            "previous decade",
+            f"rate = {expect:.6g}", f"rate = {r:.6g} +- {re_:.2g} (first {label}: {v[0]:.3g}, last: {v[-1]:.3g})",
+            f"|rate - expected| <= max({spec['rate_sigmas']:g} x decade change, {spec['rate_floor']:g} x expected): "
+            f"the fit ignores corrections O(ln n/n) and the faster modes, which the decade change bounds",
+            judge(abs(r - expect) <= tol) if math.isfinite(tol) else NOT_CHECKABLE)
+    return out
+
+
+@claim(CLAIMS, "energy-rate", BEYOND, "thm:static-equilibrium")
+def energy_rate(m, spec) -> dict:
+    return _rate_verdicts(m, spec, "energy")
+
+
+@claim(CLAIMS, "xdot-rate", BEYOND, "thm:static-equilibrium")
+def xdot_rate(m, spec) -> dict:
+    return _rate_verdicts(m, spec, "xdot")
+
+
+@claim(CLAIMS, "spring-rate", BEYOND, "thm:static-equilibrium")
+def spring_rate(m, spec) -> dict:
+    return _rate_verdicts(m, spec, "spring")
+
+
+@claim(CLAIMS, "energy-prefactor", BEYOND, "thm:static-equilibrium")
+def energy_prefactor_limit(m, spec) -> dict:
+    out = {}
+    for sc in m.scenes:
+        if not (sc.asym and sc.mu * sc.mu < 2.0):
+            continue
+        share = float(np.max(sc.spring[sc.sel] ** 2 / (2.0 * sc.xdot[sc.sel] ** 2)))
+        ptol = float(spec["prefactor_tolerance"]) + share
+        out[sc.name] = Verdict(
+            f"n^2 (E - E_m) -> 9 gamma^2/(4 mu^2) [{sc.name}]",
+            "beyond the paper: E - E_m = Xdot^2/4 + D^2/8 at an event, Xdot_n ~ 3 gamma/(mu n) (Theorem main_thm)",
+            f"{sc.ctx}: median of n^2 (E - E_m) 4 mu^2/(9 gamma^2) over the last decade",
+            "1", f"{sc.prefactor:.6f} (spring share D^2/(2 Xdot^2) up to {share:.2g})",
+            f"|. - 1| <= {ptol:.3g} = {spec['prefactor_tolerance']:g} (O(ln n/n) corrections of Xdot_n over the "
+            "decade) + the spring's share of E - E_m, max D^2/(2 Xdot^2) over the decade (it decays faster)",
+            judge(abs(sc.prefactor - 1.0) <= ptol))
+    return out
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
@@ -283,4 +289,4 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
 
 
 TITLE = "Theorem static-equilibrium: monotone energy decay to E_m = -gamma^2/2 and the state to equilibrium"
-CHECK = Check(NAME, run, plot, TITLE)
+CHECK = Check(NAME, measure, tuple(CLAIMS), plot, TITLE)

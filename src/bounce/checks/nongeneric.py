@@ -40,20 +40,22 @@ delta3 = (6 xn/|x'''|)^(1/3).
 from __future__ import annotations
 
 import math
+from functools import cached_property
+from types import SimpleNamespace
 
 import numpy as np
 import xarray as xr
 from mpmath import mp, mpf
-from numba import njit
 
-from ..events import KIND_NAMES
-from ..flight import EPS, gap
-from ..model import Deviations, Parameters
-from ..oscillator import make_oscillator
+from .. import reference
+from ..anomalies import construct_contact, monte_carlo, sample_parameters
+from ..events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
+from ..fitting import tail_exponent
+from ..model import Parameters
 from ..simulate import simulate
-from .base import NOT_CHECKABLE, Check, Verdict, judge, verdict_dataset
+from ..theory import contact_derivatives, sticky_onset
+from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge
 
-IMPACT, GRAZING, STICKY_START, DETACH = 0, 1, 2, 3
 NAME = "contact-non-generic"
 
 
@@ -61,193 +63,8 @@ def _v(dims, values, long_name, units="1", **extra):
     return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
 
 
-# --------------------------------------------------------------------------- shared helpers
-
-def sample_parameters(rng, n: int, spec: dict):
-    """gamma log-uniform, mu cycling through under- / critically / over-damped, E - E_m = gamma^2 10^U."""
-    g_lo, g_hi = spec.get("gamma", [1e-4, 0.2])
-    gamma = 10.0 ** rng.uniform(math.log10(g_lo), math.log10(g_hi), n)
-    u_lo, u_hi = spec.get("mu_under", [1e-3, 0.95])
-    o_lo, o_hi = spec.get("mu_over", [1.05, 5.0])
-    regime = np.arange(n) % 3
-    mu = np.where(regime == 0, 10.0 ** rng.uniform(math.log10(u_lo), math.log10(u_hi), n),
-                  np.where(regime == 1, 1.0, 10.0 ** rng.uniform(math.log10(o_lo), math.log10(o_hi), n)))
-    return gamma, mu, regime
-
-
-def sample_initial(rng, n: int, spec: dict):
-    """Random states with prescribed E - E_m: (a, psi', eta, sqrt(2 gamma x)) = sqrt(2 dE) * (unit vector)."""
-    gamma, mu, regime = sample_parameters(rng, n, spec)
-    e_lo, e_hi = spec.get("energy_over_gamma2", [0.1, 1000.0])
-    dE = gamma**2 * 10.0 ** rng.uniform(math.log10(e_lo), math.log10(e_hi), n)
-    w = rng.normal(size=(n, 4))
-    w /= np.linalg.norm(w, axis=1)[:, None]
-    r = np.sqrt(2.0 * dE)
-    a, psid, eta = r * w[:, 0], r * w[:, 1], r * w[:, 2]
-    x = dE * w[:, 3] ** 2 / gamma  # gamma x = dE w3^2
-    return gamma, mu, regime, dE, x, psid - a, a, eta
-
-
-def _fundamental_mp(mu, t):
-    """c, S, S' of xi'' + 2 mu xi' + xi = 0 at any real t (mpmath; own closed form)."""
-    mu, t = mpf(mu), mpf(t)
-    if mu == 1:
-        e = mp.exp(-t)
-        return (1 + t) * e, t * e, (1 - t) * e
-    k = mp.sqrt(mp.mpc(mu * mu - 1))
-    r1, r2 = -mu + k, -mu - k
-    e1, e2 = mp.exp(r1 * t), mp.exp(r2 * t)
-    c = (r1 * e2 - r2 * e1) / (r1 - r2)
-    S = (e1 - e2) / (r1 - r2)
-    Sd = (r1 * e1 - r2 * e2) / (r1 - r2)
-    return mp.re(c), mp.re(S), mp.re(Sd)
-
-
-def flight_mp(x, u, a, eta, gamma, mu, t):
-    """Free flight (eq. eq-motion-psi-xi, no floor) of (x, xdot, xi', eta) over a time t of either sign.
-
-    psi = x + xi, psi' = u + a, psi'' = -gamma; xi = eta - gamma follows the damped
-    oscillator.  Returns (x, xdot, xi', eta) as mpf at the working precision.
-    """
-    g = mpf(gamma)
-    xi0, xid0 = mpf(eta) - g, mpf(a)
-    psi0, psid0 = mpf(x) + xi0, mpf(u) + xid0
-    c, S, Sd = _fundamental_mp(mu, t)
-    t = mpf(t)
-    xi = xi0 * c + xid0 * S
-    xid = -xi0 * S + xid0 * Sd
-    psi = psi0 + psid0 * t - g * t * t / 2
-    psid = psid0 - g * t
-    return psi - xi, psid - xid, xid, xi + g
-
-
-def contact_derivatives(a_pre, eta, gamma, mu):
-    """x'' and x''' just before a contact (x = 0) from xi'(t-) and eta = xi + gamma."""
-    xidd = -(eta - gamma) - 2.0 * mu * a_pre
-    return -gamma - xidd, a_pre + 2.0 * mu * xidd
-
-
-def classifier_window(scale, acc, jerk):
-    """xn, v_tol, delta2, delta3 of the event classifier (events.py docstring)."""
-    xn = 4.0 * EPS * scale + 1e-300
-    v2 = math.sqrt(32.0 * abs(acc) * xn)
-    v3 = (288.0 * abs(jerk) * xn * xn) ** (1.0 / 3.0)
-    d2 = math.sqrt(2.0 * xn / abs(acc)) if acc != 0 else math.inf
-    d3 = (6.0 * xn / abs(jerk)) ** (1.0 / 3.0) if jerk != 0 else math.inf
-    return xn, max(v2, v3), d2, d3
-
-
-def construct_contact(gamma, mu, a_pre, eta, v, T, dps=40, n_check=24):
-    """A start state that reaches the contact (x = 0, xdot = -v, xi' = a_pre, eta) at t = T.
-
-    The contact state is evolved backward by T in mpmath; T is halved until x > 0 on
-    a grid of (-T, 0) (at most 30 times).  Returns (Deviations, T, exact contact
-    derivatives (acc, jerk), scale of eq. (F) at T).
-    """
-    with mp.workdps(dps):
-        for _ in range(30):
-            grid = [-T * (k + 1) / n_check for k in range(n_check)]
-            if all(flight_mp(0, -v, a_pre, eta, gamma, mu, s)[0] > 0 for s in grid):
-                break
-            T *= 0.5
-        else:
-            raise ValueError("could not find a backward flight that stays above the floor")
-        xs = flight_mp(0, -v, a_pre, eta, gamma, mu, -T)
-        start = Deviations(*[float(q) for q in xs])
-        acc, jerk = contact_derivatives(float(a_pre), float(eta), gamma, mu)
-    params, coefs = make_oscillator(mu)
-    scale = gap(T, start.x, start.xdot, start.xidot, start.eta, gamma, params, coefs)[2]
-    return start, T, acc, jerk, scale
-
-
-def sticky_contact(gamma, mu, alpha):
-    """(a, eta) of the sticky-line state with alpha = 4 gamma mu - Ydot (eq. sticky-cond-Y), as mpf."""
-    ydot = 4 * mpf(gamma) * mpf(mu) - mpf(alpha)
-    return ydot / 2, 2 * mpf(gamma) - mpf(mu) * ydot
-
-
 def hexs(*values) -> str:
     return "(" + ", ".join(float(v).hex() for v in values) + ")"
-
-
-# --------------------------------------------------------------------------- Monte-Carlo kernel
-
-@njit(cache=True)
-def _contact_scales(x0, u0, a0, eta0, tau, u, a, eta, kind, gamma, mu, params, coefs, out_ref, out_margin):
-    """Per impact: launch-speed ratio |Xdot_n|/v_ref and classifier margin |Xdot_n|/v_tol."""
-    px, pu, pa, pe = x0, u0, a0, eta0
-    launch = abs(u0)
-    for n in range(tau.shape[0]):
-        if kind[n] != 0:
-            out_ref[n] = np.nan
-            out_margin[n] = np.nan
-        else:
-            _, _, scale, _, _, _, _, _, _ = gap(tau[n], px, pu, pa, pe, gamma, params, coefs)
-            v = abs(u[n])
-            ref = max(launch, v)
-            out_ref[n] = v / ref if ref > 0 else np.nan
-            xid_t = u[n] + a[n]  # xi'(t-) = psi'(t+)
-            xidd = -(eta[n] - gamma) - 2.0 * mu * xid_t
-            acc = -gamma - xidd
-            jerk = xid_t + 2.0 * mu * xidd
-            xn = 4.0 * 2.220446049250313e-16 * scale + 1e-300
-            vt = max(math.sqrt(32.0 * abs(acc) * xn), (288.0 * abs(jerk) * xn * xn) ** (1.0 / 3.0))
-            out_margin[n] = v / vt
-        px, pu, pa, pe = 0.0, u[n], a[n], eta[n]
-        launch = abs(u[n])
-
-
-def monte_carlo(spec: dict):
-    """Run the Monte-Carlo sample; per-sample summaries plus the pooled low tails."""
-    rng = np.random.default_rng(int(spec["seed"]))
-    n = int(spec["n_samples"])
-    events = int(spec["events"])
-    gamma, mu, regime, dE, x, u, a, eta = sample_initial(rng, n, spec)
-    counts = np.zeros((n, 4), dtype=np.int64)
-    min_ratio = np.full(n, np.nan)
-    min_ratio_at = np.full(n, -1, dtype=np.int64)
-    min_margin = np.full(n, np.nan)
-    min_margin_at = np.full(n, -1, dtype=np.int64)
-    pooled_ratio, pooled_margin = [], []
-    n_contacts = 0
-    for i in range(n):
-        p = Parameters(gamma[i], mu[i])
-        tr = simulate(p, Deviations(x[i], u[i], a[i], eta[i]), max_events=events)
-        counts[i] = np.bincount(tr.kind, minlength=4)[:4]
-        params, coefs = make_oscillator(mu[i])
-        ref = np.empty(len(tr))
-        mar = np.empty(len(tr))
-        _contact_scales(x[i], u[i], a[i], eta[i], tr.tau, tr.xdot, tr.xidot, tr.eta, tr.kind,
-                        gamma[i], mu[i], params, coefs, ref, mar)
-        ok = np.isfinite(ref)
-        n_contacts += int(ok.sum())
-        if ok.any():
-            j = int(np.nanargmin(ref))
-            min_ratio[i], min_ratio_at[i] = ref[j], j
-            j = int(np.nanargmin(mar))
-            min_margin[i], min_margin_at[i] = mar[j], j
-            k = int(spec.get("tail", 200))
-            pooled_ratio.append(np.sort(ref[ok])[:k])
-            pooled_margin.append(np.sort(mar[ok])[:k])
-    k = int(spec.get("tail", 200))
-    tail_ratio = np.sort(np.concatenate(pooled_ratio))[:k]
-    tail_margin = np.sort(np.concatenate(pooled_margin))[:k]
-    return dict(gamma=gamma, mu=mu, regime=regime, dE=dE, x=x, u=u, a=a, eta=eta, counts=counts,
-                min_ratio=min_ratio, min_ratio_at=min_ratio_at, min_margin=min_margin,
-                min_margin_at=min_margin_at, tail_ratio=tail_ratio, tail_margin=tail_margin,
-                n_contacts=n_contacts)
-
-
-def tail_exponent(tail: np.ndarray, lo: int, hi: int):
-    """Fit N(< r) = C r^p through the ranked smallest values r_(k), k = lo..hi (1-based); p, its std. error, C."""
-    k = np.arange(1, tail.size + 1)
-    sel = (k >= lo) & (k <= hi) & (tail > 0)
-    lx, ly = np.log(tail[sel]), np.log(k[sel])
-    A = np.vstack([lx, np.ones_like(lx)]).T
-    coef, res, *_ = np.linalg.lstsq(A, ly, rcond=None)
-    dof = max(lx.size - 2, 1)
-    cov = (float(res[0]) / dof if res.size else 0.0) * np.linalg.inv(A.T @ A)
-    return float(coef[0]), float(np.sqrt(cov[0, 0])), float(np.exp(coef[1]))
 
 
 # --------------------------------------------------------------------------- constructions
@@ -257,10 +74,10 @@ def constructed(spec: dict, kind: str):
     rng = np.random.default_rng(int(spec["seed"]) + (1 if kind == "sticky" else 2))
     n = int(spec["n_constructed"])
     gamma, mu, _ = sample_parameters(rng, n, spec)
-    lo, hi = spec.get("alpha_over_gamma", [1e-3, 10.0])
+    lo, hi = spec["alpha_over_gamma"]
     size = gamma * 10.0 ** rng.uniform(math.log10(lo), math.log10(hi), n)  # alpha (sticky) or x'' (grazing)
     frac = rng.uniform(0.05, 0.5, n)
-    t_cap = float(spec.get("T_max", 2.0))
+    t_cap = float(spec["T_max"])
     rows = {k: np.empty(n) for k in ("T", "acc", "jerk", "scale", "window", "t_first", "x0")}
     first_kind = np.empty(n, dtype=np.int8)
     second_kind = np.full(n, -1, dtype=np.int8)
@@ -269,7 +86,7 @@ def constructed(spec: dict, kind: str):
         g, m = float(gamma[i]), float(mu[i])
         with mp.workdps(40):
             if kind == "sticky":
-                a_pre, eta = sticky_contact(g, m, size[i])
+                a_pre, eta = sticky_onset(mpf(g), mpf(m), mpf(size[i]))
                 T = frac[i] * min(2.0 * size[i] / g, t_cap)
             else:
                 ydot = mpf(rng.uniform(-3.0, 3.0)) * g
@@ -278,7 +95,7 @@ def constructed(spec: dict, kind: str):
                 jerk = float(a_pre) + 2 * m * float(-(eta - g) - 2 * m * a_pre)
                 T = frac[i] * min(3.0 * size[i] / abs(jerk) if jerk > 0 else t_cap, t_cap)
             start, T, acc, jerk, scale = construct_contact(g, m, a_pre, eta, 0, T)
-        _, _, d2, d3 = classifier_window(scale, acc, jerk)
+        _, _, d2, d3 = contact_window(scale, acc, jerk)
         tr = simulate(Parameters(g, m), start, max_events=2, t_max=T + 100.0)
         rows["T"][i], rows["acc"][i], rows["jerk"][i], rows["scale"][i] = T, acc, jerk, scale
         rows["window"][i] = min(d2, d3)
@@ -293,14 +110,14 @@ def constructed(spec: dict, kind: str):
 
 def speed_scan(spec: dict):
     """Arrival speed v = ratio * v_tol on the sticky line: which kind does the classifier give?"""
-    g, m = spec.get("scan_gamma_mu", [0.01, 0.3])
-    alpha = float(spec.get("scan_alpha_over_gamma", 1.0)) * g
-    T = float(spec.get("scan_T", 0.5))
-    ratios = np.geomspace(*spec.get("scan_ratio", [1e-3, 1e3]), int(spec.get("scan_n", 25)))
+    g, m = spec["scan_gamma_mu"]
+    alpha = float(spec["scan_alpha_over_gamma"]) * g
+    T = float(spec["scan_T"])
+    ratios = np.geomspace(*spec["scan_ratio"], int(spec["scan_n"]))
     with mp.workdps(40):
-        a_pre, eta = sticky_contact(g, m, alpha)
+        a_pre, eta = sticky_onset(mpf(g), mpf(m), mpf(alpha))
         _, T, acc, jerk, scale = construct_contact(g, m, a_pre, eta, 0, T)
-    _, v_tol, _, _ = classifier_window(scale, acc, jerk)
+    _, v_tol, _, _ = contact_window(scale, acc, jerk)
     kinds = np.empty(ratios.size, dtype=np.int8)
     speeds = np.empty(ratios.size)
     for i, r in enumerate(ratios):
@@ -315,70 +132,126 @@ def speed_scan(spec: dict):
 
 # --------------------------------------------------------------------------- run
 
-def run(spec: dict, inputs=()) -> xr.Dataset:
-    mc = monte_carlo(spec)
-    sticky = constructed(spec, "sticky")
-    graze = constructed(spec, "grazing")
-    scan = speed_scan(spec)
+class Measurements:
+    """The three experiments, each run on first use (so one claim runs only what it needs)."""
 
-    n_sticky = int(mc["counts"][:, STICKY_START].sum())
-    n_graze = int(mc["counts"][:, GRAZING].sum())
-    n_ev = int(mc["counts"].sum())
-    lo, hi = spec.get("tail_fit", [5, 100])
-    p_ratio, p_ratio_err, _ = tail_exponent(mc["tail_ratio"], lo, hi)
-    p_margin, p_margin_err, c_margin = tail_exponent(mc["tail_margin"], lo, hi)
-    # N(margin < m) ~ m^p below the k-th smallest margin m_(k); p >= 1 for any density that is finite at zero
-    # (p = 2 for the square-root fold of near-grazing flights), so the linear extrapolation is an upper estimate
-    k_lo = int(lo)
-    expected_in_window = k_lo / float(mc["tail_margin"][k_lo - 1])
+    def __init__(self, spec: dict):
+        self.spec = spec
+
+    @cached_property
+    def mc(self) -> dict:
+        return monte_carlo(self.spec)
+
+    @cached_property
+    def sticky(self) -> dict:
+        return constructed(self.spec, "sticky")
+
+    @cached_property
+    def graze(self) -> dict:
+        return constructed(self.spec, "grazing")
+
+    @cached_property
+    def scan(self) -> dict:
+        return speed_scan(self.spec)
+
+    @cached_property
+    def tails(self) -> SimpleNamespace:
+        """Tail fits of the Monte Carlo: N(< r) ~ r^p of both ratios; the expected count inside the window."""
+        mc = self.mc
+        lo, hi = self.spec["tail_fit"]
+        p_ratio, p_ratio_err, _ = tail_exponent(mc["tail_ratio"], lo, hi)
+        p_margin, p_margin_err, _ = tail_exponent(mc["tail_margin"], lo, hi)
+        # N(margin < m) ~ m^p below the k-th smallest margin m_(k); p >= 1 for any density that is finite at
+        # zero (p = 2 for the square-root fold of near-grazing flights), so the linear extrapolation is an
+        # upper estimate
+        k_lo = int(lo)
+        return SimpleNamespace(lo=lo, hi=hi, p_ratio=p_ratio, p_ratio_err=p_ratio_err, p_margin=p_margin,
+                               p_margin_err=p_margin_err, k_lo=k_lo,
+                               expected_in_window=k_lo / float(mc["tail_margin"][k_lo - 1]))
+
+    def where(self, i, key) -> str:
+        mc = self.mc
+        return (f"sample {i} (gamma = {mc['gamma'][i]:.3g}, mu = {mc['mu'][i]:.3g}, "
+                f"(E-E_m)/gamma^2 = {mc['dE'][i] / mc['gamma'][i] ** 2:.3g}), event {int(mc[key][i])}")
+
+    @cached_property
+    def data(self) -> xr.Dataset:
+        return _dataset(self, self.spec)
+
+
+def measure(spec: dict, inputs=()) -> Measurements:
+    return Measurements(spec)
+
+
+CLAIMS: list = []
+SUBJECT = "thm:contact-non-generic"
+
+
+@claim(CLAIMS, "no-sticky-start", PAPER, SUBJECT)
+def no_sticky_start(m, spec) -> Verdict:
+    n_sticky, n_ev = int(m.mc["counts"][:, STICKY_START].sum()), int(m.mc["counts"].sum())
+    return Verdict(
+        claim="Generic initial conditions never start a sticky event (contacts are instantaneous)",
+        paper_ref="thm:contact-non-generic, eq. sticky-condition",
+        computed=f"Monte-Carlo: {len(m.mc['gamma'])} random initial conditions (seed {spec['seed']}; gamma "
+                 f"log-uniform, mu under/critically/over-damped, (E-E_m)/gamma^2 log-uniform), "
+                 f"{spec['events']} events each: count of sticky_start",
+        expected="0",
+        measured=f"{n_sticky} sticky_start in {n_ev} events",
+        tolerance=f"exactly 0: the expected number of contacts inside the classifier's rounding window, "
+                  f"extrapolated linearly (an upper estimate) from the {m.tails.k_lo}-th smallest margin, is "
+                  f"{m.tails.expected_in_window:.2g} << 1",
+        verdict=judge(n_sticky == 0))
+
+
+@claim(CLAIMS, "no-grazing", PAPER, SUBJECT)
+def no_grazing(m, spec) -> Verdict:
+    n_graze, n_ev = int(m.mc["counts"][:, GRAZING].sum()), int(m.mc["counts"].sum())
+    return Verdict(
+        claim="Generic initial conditions never graze the floor",
+        paper_ref="thm:contact-non-generic, eq. swishes, thm:Finite-number-swishes",
+        computed="same Monte-Carlo: count of grazing events",
+        expected="0",
+        measured=f"{n_graze} grazing in {n_ev} events",
+        tolerance=f"exactly 0 (expected count inside the window {m.tails.expected_in_window:.2g})",
+        verdict=judge(n_graze == 0))
+
+
+@claim(CLAIMS, "no-atom-at-zero-speed", PAPER, SUBJECT)
+def no_atom_at_zero_speed(m, spec) -> Verdict:
+    mc, tl = m.mc, m.tails
     i_min = int(np.nanargmin(mc["min_ratio"]))
+    return Verdict(
+        claim="Zero contact speed has zero probability: no atom at |Xdot_n| = 0",
+        paper_ref="thm:contact-non-generic (zero Lebesgue measure)",
+        computed=f"{mc['n_contacts']} impacts; low tail N(|Xdot_n|/v_ref < r) = C r^p fitted through the "
+                 f"ranked smallest ratios k = {tl.lo}..{tl.hi}; v_ref = launch speed of the flight ending at n",
+        expected="p > 0 (a finite count at r -> 0 would be an atom: a positive-measure set of zero-speed contacts)",
+        measured=f"p = {tl.p_ratio:.2f} +- {tl.p_ratio_err:.2f}; smallest ratio {mc['min_ratio'][i_min]:.3g} at "
+                 + m.where(i_min, "min_ratio_at"),
+        tolerance="p - 3 sigma > 0 (3 standard errors of the least-squares slope)",
+        verdict=judge(tl.p_ratio - 3 * tl.p_ratio_err > 0))
+
+
+@claim(CLAIMS, "impacts-outside-window", SELF_TEST, SUBJECT)
+def impacts_outside_window(m, spec) -> Verdict:
+    mc, tl = m.mc, m.tails
     j_min = int(np.nanargmin(mc["min_margin"]))
-    where = (lambda i, key: f"sample {i} (gamma = {mc['gamma'][i]:.3g}, mu = {mc['mu'][i]:.3g}, "
-             f"(E-E_m)/gamma^2 = {mc['dE'][i] / mc['gamma'][i] ** 2:.3g}), event {int(mc[key][i])}")
+    return Verdict(
+        claim="Every Monte-Carlo impact is resolved far outside the classifier's rounding window",
+        paper_ref="thm:contact-non-generic; events.py (tangential contacts)",
+        computed="margin |Xdot_n| / v_tol with v_tol = max(sqrt(32|x''| xn), (288|x'''| xn^2)^(1/3)), "
+                 "xn = 4 eps scale of eq. (F) at the contact",
+        expected="min margin > 1",
+        measured=f"min margin {mc['min_margin'][j_min]:.3g} at " + m.where(j_min, "min_margin_at")
+                 + f"; tail exponent {tl.p_margin:.2f} +- {tl.p_margin_err:.2f}",
+        tolerance="1 = the classifier's threshold itself",
+        verdict=judge(mc["min_margin"][j_min] > 1.0))
 
-    verdicts = [
-        Verdict(
-            claim="Generic initial conditions never start a sticky event (contacts are instantaneous)",
-            paper_ref="thm:contact-non-generic, eq. sticky-condition",
-            computed=f"Monte-Carlo: {len(mc['gamma'])} random initial conditions (seed {spec['seed']}; gamma "
-                     f"log-uniform, mu under/critically/over-damped, (E-E_m)/gamma^2 log-uniform), "
-                     f"{spec['events']} events each: count of sticky_start",
-            expected="0",
-            measured=f"{n_sticky} sticky_start in {n_ev} events",
-            tolerance=f"exactly 0: the expected number of contacts inside the classifier's rounding window, "
-                      f"extrapolated linearly (an upper estimate) from the {k_lo}-th smallest margin, is "
-                      f"{expected_in_window:.2g} << 1",
-            verdict=judge(n_sticky == 0)),
-        Verdict(
-            claim="Generic initial conditions never graze the floor",
-            paper_ref="thm:contact-non-generic, eq. swishes, thm:Finite-number-swishes",
-            computed="same Monte-Carlo: count of grazing events",
-            expected="0",
-            measured=f"{n_graze} grazing in {n_ev} events",
-            tolerance=f"exactly 0 (expected count inside the window {expected_in_window:.2g})",
-            verdict=judge(n_graze == 0)),
-        Verdict(
-            claim="Zero contact speed has zero probability: no atom at |Xdot_n| = 0",
-            paper_ref="thm:contact-non-generic (zero Lebesgue measure)",
-            computed=f"{mc['n_contacts']} impacts; low tail N(|Xdot_n|/v_ref < r) = C r^p fitted through the "
-                     f"ranked smallest ratios k = {lo}..{hi}; v_ref = launch speed of the flight ending at n",
-            expected="p > 0 (a finite count at r -> 0 would be an atom: a positive-measure set of zero-speed contacts)",
-            measured=f"p = {p_ratio:.2f} +- {p_ratio_err:.2f}; smallest ratio {mc['min_ratio'][i_min]:.3g} at "
-                     + where(i_min, "min_ratio_at"),
-            tolerance="p - 3 sigma > 0 (3 standard errors of the least-squares slope)",
-            verdict=judge(p_ratio - 3 * p_ratio_err > 0)),
-        Verdict(
-            claim="Every Monte-Carlo impact is resolved far outside the classifier's rounding window",
-            paper_ref="thm:contact-non-generic; events.py (tangential contacts)",
-            computed="margin |Xdot_n| / v_tol with v_tol = max(sqrt(32|x''| xn), (288|x'''| xn^2)^(1/3)), "
-                     "xn = 4 eps scale of eq. (F) at the contact",
-            expected="min margin > 1",
-            measured=f"min margin {mc['min_margin'][j_min]:.3g} at " + where(j_min, "min_margin_at")
-                     + f"; tail exponent {p_margin:.2f} +- {p_margin_err:.2f}",
-            tolerance="1 = the classifier's threshold itself",
-            verdict=judge(mc["min_margin"][j_min] > 1.0)),
-    ]
 
+@claim(CLAIMS, "constructed-sticky-onsets", SELF_TEST, SUBJECT)
+def constructed_sticky_onsets(m, spec) -> Verdict:
+    sticky = m.sticky
     # constructed sticky onsets
     ok_kind = sticky["first_kind"] == STICKY_START
     terr = np.abs(sticky["t_first"] - sticky["T"])
@@ -393,12 +266,11 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         g_i, m_i = float(sticky["gamma"][i]), float(sticky["mu"][i])
         if sticky["first_kind"][i] != IMPACT:
             continue
-        with mp.workdps(50):
-            ex = flight_mp(s_i.x, s_i.xdot, s_i.xidot, s_i.eta, g_i, m_i, sticky["t_first"][i])
-            acc_i, jerk_i = contact_derivatives(float(ex[2]), float(ex[3]), g_i, m_i)
-        xn_i, v_tol_i, _, _ = classifier_window(sticky["scale"][i], acc_i, jerk_i)
+        ex = reference.free_flight(g_i, m_i, s_i.x, s_i.xdot, s_i.xidot, s_i.eta, sticky["t_first"][i])
+        acc_i, jerk_i = contact_derivatives(float(ex.a), float(ex.eta), g_i, m_i)
+        xn_i, v_tol_i, _, _ = contact_window(sticky["scale"][i], acc_i, jerk_i)
         # the rounded start really meets the floor there (x = 0 to rounding), faster than v_tol
-        if abs(float(ex[0])) <= 10.0 * xn_i and abs(float(ex[1])) > v_tol_i:
+        if abs(float(ex.x)) <= 10.0 * xn_i and abs(float(ex.u)) > v_tol_i:
             off_plane.append(i)
     bad = np.setdiff1d(bad, np.array(off_plane, dtype=bad.dtype))
     msg = (f"{int((ok_kind & ok_time).sum())}/{ok_kind.size} sticky_start at |t - T| <= 2 delta3; "
@@ -411,27 +283,30 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
                 f"{float(sticky['size'][i])!r}, T = {float(sticky['T'][i])!r}, start Deviations(x, xdot, xidot, eta) = "
                 f"{hexs(s.x, s.xdot, s.xidot, s.eta)}: got {kname} at t = {float(sticky['t_first'][i])!r}; "
                 f"failures have alpha/gamma <= {np.max(sticky['size'][bad] / sticky['gamma'][bad]):.3g}")
-        with mp.workdps(50):
-            g, m = float(sticky["gamma"][i]), float(sticky["mu"][i])
-            ex = flight_mp(s.x, s.xdot, s.xidot, s.eta, g, m, sticky["t_first"][i])
-            acc, jerk = contact_derivatives(float(ex[2]), float(ex[3]), g, m)
-        _, v_tol, _, _ = classifier_window(sticky["scale"][i], acc, jerk)
-        tr = simulate(Parameters(g, m), s, max_events=1)
-        msg += (f"; there the exact speed of the rounded start state is |x'| = {abs(float(ex[1])):.3g} < v_tol = "
+        g, mu = float(sticky["gamma"][i]), float(sticky["mu"][i])
+        ex = reference.free_flight(g, mu, s.x, s.xdot, s.xidot, s.eta, sticky["t_first"][i])
+        acc, jerk = contact_derivatives(float(ex.a), float(ex.eta), g, mu)
+        _, v_tol, _, _ = contact_window(sticky["scale"][i], acc, jerk)
+        tr = simulate(Parameters(g, mu), s, max_events=1)
+        msg += (f"; there the exact speed of the rounded start state is |x'| = {abs(float(ex.u)):.3g} < v_tol = "
                 f"{v_tol:.3g}, but the simulator's contact speed is {abs(tr.xdot[0]):.3g} (a regression of this kind "
-                f"once came from the Newton polish of flight.first_contact; see tests/test_checks_part2.py)")
-    verdicts.append(Verdict(
+                f"once came from the Newton polish of flight.first_contact; see tests/test_flight.py)")
+    return Verdict(
         claim="A state backward-evolved from a sticky onset reaches the floor in a sticky event at t = T",
         paper_ref="eqs. sticky-condition, sticky-cond-Y; sec. 7 (states on S reached by T^-)",
-        computed=f"{ok_kind.size} random onsets (alpha/gamma log-uniform in {spec.get('alpha_over_gamma', [1e-3, 10])}),"
+        computed=f"{ok_kind.size} random onsets (alpha/gamma log-uniform in {spec['alpha_over_gamma']}),"
                  " backward flight by T < 2 alpha/gamma (mpmath, 40 digits), rounded to float64, simulated forward",
         expected="first event sticky_start at t = T (or an impact, if the exact flight of the rounded start "
                  "reaches the floor faster than the classifier's window v_tol)",
         measured=msg,
         tolerance="|t - T| <= 2 delta3, delta3 = (6 xn/|x'''|)^(1/3) the classifier's hidden window at xn = 4 eps "
                   "scale (doubled: the rounded start state moves the tangency by as much)",
-        verdict=judge(bad.size == 0)))
+        verdict=judge(bad.size == 0))
 
+
+@claim(CLAIMS, "constructed-grazings", SELF_TEST, SUBJECT)
+def constructed_grazings(m, spec) -> Verdict:
+    graze = m.graze
     ok_kind = graze["first_kind"] == GRAZING
     terr_g = np.abs(graze["t_first"] - graze["T"])
     ok_time = terr_g <= 2.0 * graze["window"]
@@ -444,21 +319,25 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         msg += (f"; first failure: gamma = {float(graze['gamma'][i])!r}, mu = {float(graze['mu'][i])!r}, x'' = {float(graze['size'][i])!r}, "
                 f"T = {float(graze['T'][i])!r}, start {hexs(s.x, s.xdot, s.xidot, s.eta)}: got {kname} at "
                 f"t = {float(graze['t_first'][i])!r}")
-    verdicts.append(Verdict(
+    return Verdict(
         claim="A state backward-evolved from a grazing (x = xdot = 0, x'' > 0) grazes the floor at t = T",
         paper_ref="eq. swishes",
-        computed=f"{ok_kind.size} random grazings (x''/gamma log-uniform in {spec.get('alpha_over_gamma', [1e-3, 10])}), "
+        computed=f"{ok_kind.size} random grazings (x''/gamma log-uniform in {spec['alpha_over_gamma']}), "
                  "backward flight by T, simulated forward",
         expected="first event grazing at t = T",
         measured=msg,
         tolerance="|t - T| <= 2 min(delta2, delta3), delta2 = sqrt(2 xn/|x''|) (classifier window, doubled as above)",
-        verdict=judge(bad.size == 0)))
+        verdict=judge(bad.size == 0))
 
+
+@claim(CLAIMS, "classifier-switch", SELF_TEST, SUBJECT)
+def classifier_switch(m, spec) -> Verdict:
+    scan = m.scan
     r, k = scan["ratios"], scan["kinds"]
     tangential_low = bool(np.all(k[r <= 0.25] == STICKY_START))
     impact_high = bool(np.all(k[r >= 4.0] == IMPACT))
     switch = r[np.flatnonzero(k == IMPACT)[0]] if np.any(k == IMPACT) else np.nan
-    verdicts.append(Verdict(
+    return Verdict(
         claim="The classifier calls a contact tangential exactly below its rounding window v_tol",
         paper_ref="events.py docstring (approximation at the rounding level); eq. sticky-condition",
         computed=f"arrival speed v = ratio * v_tol on the sticky line (gamma = {scan['gamma']}, mu = {scan['mu']}, "
@@ -468,17 +347,24 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
                  f"first impact at ratio {switch:.3g}",
         tolerance="factor 4 either side: v_tol is recomputed here from the scale of eq. (F) at T, the simulator "
                   "evaluates it at its own (rounding-shifted) contact point",
-        verdict=judge(tangential_low and impact_high)))
+        verdict=judge(tangential_low and impact_high))
 
-    verdicts.append(Verdict(
+
+@claim(CLAIMS, "nowhere-dense", PAPER, SUBJECT)
+def nowhere_dense(m, spec) -> Verdict:
+    return Verdict(
         claim="Nowhere density of the anomalous set",
         paper_ref="thm:contact-non-generic (nowhere dense)",
         computed="-",
         expected="every neighbourhood of a generic state contains no anomalous state",
         measured="a topological property of a zero-measure set; a finite sample cannot test it",
         tolerance="-",
-        verdict=NOT_CHECKABLE))
+        verdict=NOT_CHECKABLE)
 
+
+def _dataset(m, spec: dict) -> xr.Dataset:
+    mc, sticky, graze, scan, tl = m.mc, m.sticky, m.graze, m.scan, m.tails
+    lo, hi = tl.lo, tl.hi
     n_mc = len(mc["gamma"])
     data = xr.Dataset(
         {
@@ -523,12 +409,13 @@ def run(spec: dict, inputs=()) -> xr.Dataset:
         },
         coords={"kind": ("kind", np.array(KIND_NAMES, dtype=object), {"long_name": "event kind", "units": "1"})},
         attrs={"check": NAME, "n_samples": n_mc, "events_per_sample": int(spec["events"]), "seed": int(spec["seed"]),
-               "n_contacts": mc["n_contacts"], "tail_exponent_ratio": p_ratio, "tail_exponent_ratio_err": p_ratio_err,
-               "tail_exponent_margin": p_margin, "expected_in_window": expected_in_window,
+               "n_contacts": mc["n_contacts"], "tail_exponent_ratio": tl.p_ratio,
+               "tail_exponent_ratio_err": tl.p_ratio_err, "tail_exponent_margin": tl.p_margin,
+               "expected_in_window": tl.expected_in_window,
                "scan_v_tol": scan["v_tol"], "scan_gamma": scan["gamma"], "scan_mu": scan["mu"],
                "tail_fit_lo": int(lo), "tail_fit_hi": int(hi)},
     )
-    return verdict_dataset(verdicts, data, title="Theorem contact-non-generic: zero-speed contacts are non-generic")
+    return data
 
 
 # --------------------------------------------------------------------------- plot
@@ -606,4 +493,5 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-CHECK = Check(NAME, run, plot, title="Theorem contact-non-generic: zero-speed contacts are non-generic")
+CHECK = Check(NAME, measure, tuple(CLAIMS), plot,
+              title="Theorem contact-non-generic: zero-speed contacts are non-generic")

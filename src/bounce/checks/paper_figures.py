@@ -11,12 +11,15 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import xarray as xr
 
 from ..figures.common import WIDTH, plt, save
 from ..io import sample_dataset
-from .base import Check, Verdict, judge, verdict_dataset
+from ..theory import T_xi
+from .base import PAPER, Check, Verdict, claim, judge
 
 
 def _var(value, long_name):
@@ -30,7 +33,7 @@ def apex_heights(ds, samples_per_flight: int, factor: float) -> tuple[np.ndarray
     about T_xi too (3.0-3.2 for mu = 0.01, T_xi = 3.14), so a factor > 1 separates them.
     """
     mu = float(ds.attrs["mu"])
-    t_xi = factor * np.pi / np.sqrt(1.0 - mu * mu)
+    t_xi = factor * T_xi(mu)
     t, tau = ds["t"].values, ds["tau"].values
     starts, peaks = [], []
     for k in range(t.size - 1):
@@ -41,9 +44,9 @@ def apex_heights(ds, samples_per_flight: int, factor: float) -> tuple[np.ndarray
     return np.array(starts), np.array(peaks)
 
 
-def run(spec: dict, inputs: list[xr.Dataset]) -> xr.Dataset:
+def measure(spec: dict, inputs: list[xr.Dataset]) -> SimpleNamespace:
+    """Apex heights of the macroscopic flights of fig. rigid-fall; Ydot_n and Y_n - y_eq of the contacts."""
     fall, contacts = inputs
-    lo, hi = spec["drop_between"]
     starts, peaks = apex_heights(fall, int(spec["samples_per_flight"]), float(spec["macroscopic_factor"]))
     ratios = peaks[1:] / peaks[:-1]
     k = int(np.argmin(ratios)) + 1  # the drop is from macroscopic flight k to k + 1 (1-based)
@@ -55,28 +58,6 @@ def run(spec: dict, inputs: list[xr.Dataset]) -> xr.Dataset:
     sign_changes = int(np.count_nonzero(np.diff(np.sign(ydev)) != 0))
     third = max(ydev.size // 3, 1)
     amp_first, amp_last = float(np.max(np.abs(ydev[:third]))), float(np.max(np.abs(ydev[-third:])))
-    verdicts = [
-        Verdict("sudden drop of the maximum height between the 4th and the 6th macroscopic flight",
-                "fig. rigid-fall, section 8.1",
-                f"max y per flight longer than {spec['macroscopic_factor']} T_xi; the largest relative drop "
-                "between consecutive ones",
-                f"drop from flight k to k+1 with {lo} <= k, k+1 <= {hi}",
-                f"largest drop from flight {k} to {k + 1} (ratio {ratios[k - 1]:.3f}); heights "
-                + ", ".join(f"{h:.2f}" for h in peaks[: k + 2]),
-                "exact (flight indices are integers)", judge(lo <= k and k + 1 <= hi)),
-        Verdict("early contacts are double impacts: ydot alternates in sign (zig-zag)",
-                "fig. very_rigid_poincare, section 8.1",
-                f"fraction of sign alternations of Ydot_n over the first {n_zig} contacts",
-                ">= 0.9", f"{alternation:.3f}", "0.9: a single-impact phase would alternate at most half the time",
-                judge(alternation >= 0.9)),
-        Verdict("late contacts spiral towards (0,0,0): damped oscillation of Y_n - y_eq",
-                "fig. very_rigid_poincare_magni, section 8.1",
-                f"sign changes of Y_n - y_eq and its amplitude, first vs last third of contacts {a}-{b}",
-                ">= 4 sign changes, amplitude decreasing",
-                f"{sign_changes} sign changes; amplitude {amp_first:.2e} -> {amp_last:.2e}",
-                "qualitative claim: any oscillation (>= 4 sign changes) with decaying envelope",
-                judge(sign_changes >= 4 and amp_last < amp_first)),
-    ]
     data = xr.Dataset({
         "apex_time": ("flight", starts, {"long_name": "start of the macroscopic flight", "units": "1"}),
         "apex_height": ("flight", peaks, {"long_name": "maximum height of the upper mass in the flight", "units": "1"}),
@@ -85,7 +66,46 @@ def run(spec: dict, inputs: list[xr.Dataset]) -> xr.Dataset:
         "spiral_sign_changes": _var(sign_changes, "sign changes of Y_n - y_eq, late contacts"),
     })
     data.attrs.update(gamma=float(fall.attrs["gamma"]), mu=float(fall.attrs["mu"]))
-    return verdict_dataset(verdicts, data, title="What the paper sees in figs. rigid-fall and very_rigid_poincare")
+    return SimpleNamespace(peaks=peaks, ratios=ratios, k=k, alternation=alternation, sign_changes=sign_changes,
+                           amp_first=amp_first, amp_last=amp_last, data=data)
+
+
+CLAIMS: list = []
+
+
+@claim(CLAIMS, "height-drop", PAPER, "fig:rigid-fall")
+def height_drop(m, spec) -> Verdict:
+    lo, hi = spec["drop_between"]
+    k = m.k
+    return Verdict("sudden drop of the maximum height between the 4th and the 6th macroscopic flight",
+                   "fig. rigid-fall, section 8.1",
+                   f"max y per flight longer than {spec['macroscopic_factor']} T_xi; the largest relative drop "
+                   "between consecutive ones",
+                   f"drop from flight k to k+1 with {lo} <= k, k+1 <= {hi}",
+                   f"largest drop from flight {k} to {k + 1} (ratio {m.ratios[k - 1]:.3f}); heights "
+                   + ", ".join(f"{h:.2f}" for h in m.peaks[: k + 2]),
+                   "exact (flight indices are integers)", judge(lo <= k and k + 1 <= hi))
+
+
+@claim(CLAIMS, "zigzag", PAPER, "fig:very_rigid_poincare")
+def zigzag(m, spec) -> Verdict:
+    return Verdict("early contacts are double impacts: ydot alternates in sign (zig-zag)",
+                   "fig. very_rigid_poincare, section 8.1",
+                   f"fraction of sign alternations of Ydot_n over the first {int(spec['zigzag_contacts'])} contacts",
+                   ">= 0.9", f"{m.alternation:.3f}", "0.9: a single-impact phase would alternate at most half the time",
+                   judge(m.alternation >= 0.9))
+
+
+@claim(CLAIMS, "spiral", PAPER, "fig:very_rigid_poincare")
+def spiral(m, spec) -> Verdict:
+    a, b = spec["spiral_contacts"]
+    return Verdict("late contacts spiral towards (0,0,0): damped oscillation of Y_n - y_eq",
+                   "fig. very_rigid_poincare_magni, section 8.1",
+                   f"sign changes of Y_n - y_eq and its amplitude, first vs last third of contacts {a}-{b}",
+                   ">= 4 sign changes, amplitude decreasing",
+                   f"{m.sign_changes} sign changes; amplitude {m.amp_first:.2e} -> {m.amp_last:.2e}",
+                   "qualitative claim: any oscillation (>= 4 sign changes) with decaying envelope",
+                   judge(m.sign_changes >= 4 and m.amp_last < m.amp_first))
 
 
 def plot(ds, spec, outputs) -> None:
@@ -103,5 +123,5 @@ def plot(ds, spec, outputs) -> None:
     save(fig, outputs)
 
 
-CHECK = Check(name="paper-figures", run=run, plot=plot,
+CHECK = Check("paper-figures", measure, tuple(CLAIMS), plot,
               title="What the paper sees in figs. rigid-fall and very_rigid_poincare")

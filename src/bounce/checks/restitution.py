@@ -36,58 +36,16 @@ from __future__ import annotations
 
 import math
 import time
+from types import SimpleNamespace
 
 import numpy as np
 import xarray as xr
 
-from .base import NOT_CHECKABLE, Check, Verdict, judge, verdict_dataset
+from ..fitting import fit_limit
+from ..theory import T_xi, our_r, rest_coefficient_function_of_mu, u_c
+from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
 
 NAME = "restitution"
-
-DEFAULTS = {
-    "plateau_flight": 2.0,  # f_m >= 2 T_d
-    "r_sigmas": 2.0,
-    "contact_sigmas": 3.0,
-    "double_band": 0.25,
-    "our_r_threshold": 0.05,
-    "dissipation_threshold": 0.25,
-    "few_impacts": 20,
-    "inelastic_energy_fraction": 1e-3,
-    "transient": 0.1,
-    "fit": {"min_span": 5.0, "settle": 0.2},  # overrides of the limit fit of check main-theorem (asymptotics.DEFAULT_FIT):
-    # the map quantity settles only after ~3e4 impacts at gamma = 1e-5, mu = 0.01 (its 1/n term is ~1/mu^2)
-    "slope_floor": 1e-6,  # smallest tolerance of the fitted small-u slope (rounding of (1 - r)/u ~ n eps)
-    "fit_err_max": 1e-2,  # a less stable limit fit of the small-u branch determines nothing
-}
-
-
-def _cfg(spec):
-    cfg = {k: (dict(v) if isinstance(v, dict) else v) for k, v in DEFAULTS.items()}
-    for k, v in (spec or {}).items():
-        if isinstance(cfg.get(k), dict) and isinstance(v, dict):
-            cfg[k].update(v)
-        else:
-            cfg[k] = v
-    return cfg
-
-
-def T_xi(mu: float) -> float:
-    return math.pi / math.sqrt(1.0 - mu * mu)
-
-
-def r_double(mu: float) -> float:
-    """Eq. rest-coefficient-function-of-mu: r = exp(-mu T_xi)."""
-    return math.exp(-mu * T_xi(mu))
-
-
-def our_r(u, gamma: float, mu: float, com: bool = False):
-    """Eq. our-r (``com``: its small-u branch rewritten for the centre-of-mass speed, 1 - 2 mu u/(3 gamma))."""
-    r0 = r_double(mu)
-    k = (2.0 if com else 1.0) * mu / (3.0 * gamma)
-    uc = (1.0 - r0) / k
-    u = np.asarray(u, dtype=float)
-    return np.where(u > uc, r0, 1.0 - k * u)
-
 
 def _arrays(ds):
     n = ds.sizes["event"]
@@ -100,7 +58,7 @@ def _arrays(ds):
 def double_impact(ds, cfg) -> dict:
     gamma, mu = float(ds.attrs["gamma"]), float(ds.attrs["mu"])
     tau, xd, xi, _, kind = _arrays(ds)
-    Txi, Td, r0 = T_xi(mu), 1.0 / mu, r_double(mu)
+    Txi, Td, r0 = T_xi(mu), 1.0 / mu, rest_coefficient_function_of_mu(mu)
     M = (len(tau) - 1) // 2
     m = np.arange(1, M)
     f = tau[2 * m]  # f_m = tau_{2m}
@@ -173,14 +131,12 @@ def our_r_test(ds, dbl, cfg) -> dict:
     # small-u branch: q_x = (1 - Xdot_(n+1)/Xdot_n)/(mu Xdot_n/(3 gamma)) (the map quantity of check
     # main-theorem) and, in the centre-of-mass convention u = gamma tau_n/2, r = tau_(n+1)/tau_n,
     # q_com = (1 - r)/(mu u/(3 gamma)); limits fitted like the limits of Theorem main_thm
-    from .asymptotics import DEFAULT_FIT, fit_limit
-
     t = ds["t"].values
     n = np.arange(1, len(tau) - 1)
     with np.errstate(divide="ignore", invalid="ignore"):
         q_x = (1.0 - xd[n] / xd[n - 1]) / (mu * xd[n - 1] / (3.0 * gamma))
         q_com = (1.0 - tau[n + 1] / tau[n]) / (mu * (gamma * tau[n] / 2.0) / (3.0 * gamma))
-    fit = dict(DEFAULT_FIT, **cfg.get("fit", {}))
+    fit = cfg["fit"]
     fx = fit_limit(n.astype(float), t[n - 1], q_x, mu, fit)
     fc = fit_limit(n.astype(float), t[n - 1], q_com / 2.0, mu, fit)
     slope_x, drift_x = fx["limit"], fx["limit_err"]
@@ -195,106 +151,29 @@ def our_r_test(ds, dbl, cfg) -> dict:
     return {"plot": plot, "u": u, "r": r, "kind": kind_b, "err": err, "u1": u1, "u2": u2, "d1": d1, "d2": d2,
             "n_bad": int(bad.sum()), "n_bounces": int(u.size), "slope_com": slope_com, "slope_x": slope_x,
             "drift_com": drift_com, "drift_x": drift_x,
-            "uc": 3.0 * gamma / mu * (1.0 - dbl["r0"]), "u_tail": ulast,
+            "uc": u_c(gamma, mu), "u_tail": ulast,
             "max_err_above": float(np.max(np.abs(err[u > u2]))) if bad.any() and (u > u2).any() else math.nan,
             "max_err_below": float(np.max(np.abs(err[u < u1]))) if bad.any() and (u < u1).any() else math.nan}
 
 
-def run(spec: dict, inputs: list) -> xr.Dataset:
+def measure(spec: dict, inputs: list) -> SimpleNamespace:
+    """The under-damped input's double impacts and eq. our-r test; the over-damped input's approach."""
     t0 = time.perf_counter()
-    cfg = _cfg(spec)
-    verdicts: list[Verdict] = []
     data = xr.Dataset()
     dsr = next((d for d in inputs if float(d.attrs["mu"]) < 1.0), None)
     dso = next((d for d in inputs if float(d.attrs["mu"]) ** 2 > 2.0), None)
-    if dsr is not None:
-        name = str(dsr.attrs.get("scene", "under-damped input"))
-        d = double_impact(dsr, cfg)
-        ctx = f"scene {name} (gamma = {d['gamma']:g}, mu = {d['mu']:g})"
-        r, P = d["r"], d["plateau"]
+    m = SimpleNamespace(under=dsr is not None, over=dso is not None)
+    if m.under:
+        m.name = name = str(dsr.attrs.get("scene", "under-damped input"))
+        m.d = d = double_impact(dsr, spec)
+        m.ctx = f"scene {name} (gamma = {d['gamma']:g}, mu = {d['mu']:g})"
+        m.P = P = d["plateau"]
         if P >= 3:
-            rm, rs = float(np.mean(r)), float(np.std(r, ddof=1))
-            corr = d["r0"] * d["mu"] * d["Txi"] * float(np.max(d["delta"]))
-            tol = cfg["r_sigmas"] * rs + corr
-            verdicts.append(Verdict(
-                "Initially r_n = f_{n+1}/f_n is constant and agrees with r = exp(-mu T_xi)",
-                "eq. rest-coefficient-function-of-mu, eq. Falcon-rest-coeff, fig. rest-coeff",
-                f"{ctx}: mean and spread of r_m = f_(m+1)/f_m, f_m = tau_(2m), over the plateau m = 1..{P} "
-                f"(f_m >= {cfg['plateau_flight']:g} T_d)",
-                f"r = exp(-mu pi/sqrt(1-mu^2)) = {d['r0']:.6f}",
-                f"mean r = {rm:.6f}, std {rs:.2g}, mean - r = {rm - d['r0']:+.2g}, max |r_m - r| = "
-                f"{np.max(np.abs(r - d['r0'])):.2g}",
-                f"|mean - r| <= {tol:.2g} = {cfg['r_sigmas']:g} x plateau std + the first-order gravity correction "
-                f"r mu T_xi max(delta_m) = {corr:.2g} (eq. rest-coefficient-function-of-mu is the gamma -> 0 limit)",
-                judge(abs(rm - d["r0"]) <= tol)))
-            am = float(np.mean(d["after"]))
-            bm = float(np.mean(d["before_after"]))
-            verdicts.append(Verdict(
-                "r = Psidot_n/Psidot_{n+2}, Psidot_n, Psidot_{n+2} the centre-of-mass velocity before and after a "
-                "double impact, equals exp(-mu T_xi) (as printed)",
-                "eq. proper-rest-coeff", f"{ctx}: |psi'(t_(2m+1)^-)| / psi'(t_(2m+2)^+) over the plateau",
-                f"{d['r0']:.6f}", f"mean {bm:.6f} (= 1/{1 / bm:.6f})",
-                f"same tolerance, {tol:.2g}", judge(abs(bm - d["r0"]) <= tol)))
-            verdicts.append(Verdict(
-                "Erratum candidate: the ratio is after/before, r = Psidot_{n+2}/Psidot_n = exp(-mu T_xi)",
-                "eq. proper-rest-coeff", f"{ctx}: psi'(t_(2m+2)^+)/psi'(t_(2m)^+) (successive take-off velocities) "
-                "and psi'(t_(2m+2)^+)/|psi'(t_(2m+1)^-)| over the plateau",
-                f"{d['r0']:.6f}", f"take-off ratio {am:.6f}; after/before {1 / bm:.6f}",
-                f"same tolerance, {tol:.2g}", judge(abs(am - d["r0"]) <= tol and abs(1 / bm - d["r0"]) <= tol)))
-            cr, delta = d["contact_ratio"], d["delta"]
-            resid = cr - (1.0 - delta)
-            rsd = float(np.std(resid, ddof=1))
-            ctol = delta + cfg["contact_sigmas"] * rsd
-            verdicts.append(Verdict(
-                "A double impact (the contact) lasts about T_xi = pi/sqrt(1-mu^2), half the proper period",
-                "eq. char-times and the discussion after it",
-                f"{ctx}: tau_(2m-1)/T_xi for the contacts m = 1..{P + 1} of the plateau",
-                "1, shortened by gravity: 1 - delta_m, delta_m = gamma T_xi e^(mu T_xi)/(2 V_m) (first order)",
-                f"tau_c/T_xi in [{cr.min():.4f}, {cr.max():.4f}], mean {cr.mean():.4f}; delta_m in "
-                f"[{delta.min():.2g}, {delta.max():.2g}]; residual from 1 - delta_m: std {rsd:.2g}",
-                f"|tau_c/T_xi - 1| <= delta_m + {cfg['contact_sigmas']:g} x residual std (residual spring vibration), "
-                "for every contact",
-                judge(bool(np.all(np.abs(cr - 1.0) <= ctol)))))
-        else:
-            verdicts.append(Verdict("Initially r_n is constant = exp(-mu T_xi)", "eq. rest-coefficient-function-of-mu",
-                                    ctx, f"{d['r0']:.6f}", f"plateau of {P} bounces only", "-", NOT_CHECKABLE))
-        o = our_r_test(dsr, d, cfg)
-        thr = cfg["our_r_threshold"]
-        verdicts.append(Verdict(
-            f"Eq. our-r is accurate for large and small impact speeds (within {thr:.0%}) and fails in an "
-            "intermediate band (under-damped spring)", "eq. our-r, sec. Discussion",
-            f"{ctx}: restitution per macroscopic bounce, r = ratio of successive landing speeds u = Xdot "
-            f"({d['run_len']} double-impact bounces, then every impact); band = range of u where |r/r_our - 1| > {thr:g}",
-            "a bounded band [u1, u2] with r within the threshold outside it",
-            f"band [u1, u2] = [{o['u1']:.3g}, {o['u2']:.3g}] = [{o['u1'] / o['uc']:.3g}, {o['u2'] / o['uc']:.3g}] u_c "
-            f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces); max error above u2: "
-            f"{o['max_err_above']:.2g}, below u1: {o['max_err_below']:.2g}; 1 - r off by > "
-            f"{cfg['dissipation_threshold']:.0%} in [{o['d1']:.3g}, {o['d2']:.3g}]",
-            f"threshold {thr:g} (brief); reproduced if failures are confined to a band strictly inside the "
-            "simulated speeds, with correct r on both sides",
-            judge(bool(np.isfinite(o["u1"]) and o["u1"] > np.min(o["u"]) and o["u2"] < np.max(o["u"])
-                       and (o["max_err_above"] <= thr) and (o["max_err_below"] <= thr)))))
-        emax = float(cfg["fit_err_max"])
-        tol_x = max(3.0 * o["drift_x"], float(cfg["slope_floor"]))
-        verdicts.append(Verdict(
-            "Small-u branch of eq. our-r: 1 - r = mu u/(3 gamma) with u the lower mass's impact speed",
-            "eq. our-r, eq. restituzione",
-            f"{ctx}: limit L of (1 - r_n)/(mu u_n/(3 gamma)), r_n = Xdot_(n+1)/Xdot_n, u_n = Xdot_n, fitted like the "
-            "limits of check main-theorem (corrections ln n/n, 1/n, sticky-spring terms)",
-            "L = 1", f"L = {o['slope_x']:.6f} +- {o['drift_x']:.2g} (last u ~ {o['u_tail']:.2g})",
-            f"|L - 1| <= {tol_x:.2g} = max(3 x fit error, {cfg['slope_floor']:g}); not checkable without a fit "
-            f"window of a decade after the transient or with a fit error > {emax:g}",
-            judge(abs(o["slope_x"] - 1.0) <= tol_x)
-            if np.isfinite(o["drift_x"]) and o["drift_x"] <= emax else NOT_CHECKABLE))
-        tol_c = max(3.0 * o["drift_com"], 2.0 * float(cfg["slope_floor"]))
-        verdicts.append(Verdict(
-            "Erratum candidate: as a rigid-ball law (u = centre-of-mass speed, flight 2u/gamma, as in eq. "
-            "standard-model and the large-u branch) the small-u branch is 1 - 2 mu u/(3 gamma), not 1 - mu u/(3 gamma)",
-            "eq. our-r", f"{ctx}: limit of (1 - r_n)/(mu u_n/(3 gamma)) with r_n = tau_(n+1)/tau_n, u_n = gamma tau_n/2",
-            "2 (the printed law gives 1)", f"{o['slope_com']:.6f} +- {o['drift_com']:.2g}",
-            f"|L - 2| <= {tol_c:.2g} (as the row above)",
-            judge(abs(o["slope_com"] - 2.0) <= tol_c)
-            if np.isfinite(o["drift_com"]) and o["drift_com"] <= 2 * emax else NOT_CHECKABLE))
+            r = d["r"]
+            m.rm, m.rs = float(np.mean(r)), float(np.std(r, ddof=1))
+            m.corr = d["r0"] * d["mu"] * d["Txi"] * float(np.max(d["delta"]))
+            m.tol = spec["r_sigmas"] * m.rs + m.corr
+        m.o = o = our_r_test(dsr, d, spec)
         data = data.assign(
             plateau_m=("plateau", d["m"].astype(float), {"long_name": "bounce index m of the plateau", "units": "1"}),
             plateau_r=("plateau", d["r"], {"long_name": "r_m = f_(m+1)/f_m on the plateau", "units": "1"}),
@@ -318,35 +197,12 @@ def run(spec: dict, inputs: list) -> xr.Dataset:
         data.attrs.update(r_theory=d["r0"], T_xi=d["Txi"], u_c=o["uc"], band_u1=o["u1"], band_u2=o["u2"],
                           dissipation_band_u1=o["d1"], dissipation_band_u2=o["d2"], slope_com=o["slope_com"],
                           slope_x=o["slope_x"], plateau_length=P, double_run=d["run_len"],
-                          rest_gamma=d["gamma"], rest_mu=d["mu"], rest_scene=name, our_r_threshold=thr)
-    if dso is not None:
-        name = str(dso.attrs.get("scene", "over-damped input"))
-        o = overdamped(dso, cfg)
-        ctx = f"scene {name} (gamma = {o['gamma']:g}, mu = {o['mu']:g}, {o['n_events']} impacts)"
-        few = int(cfg["few_impacts"])
-        verdicts.append(Verdict(
-            "The over-damped spring shrinks for the first few impacts, then expands, approaching its equilibrium "
-            "length monotonically from below", "figs. very_rigid_poincare_overdamped(_magni), sec. 8.1",
-            f"{ctx}: y - y_eq (= spring length - its equilibrium, x = 0) at the impacts: n0 = first impact from "
-            "which it is < 0 and increasing at every later impact; impact of the minimum; sign changes",
-            f"n0 and the minimum within the first few ({few}) impacts, then no sign change of y - y_eq or of its "
-            "increments",
-            f"n0 = {o['n0']}, minimum at impact {o['n_min']}, sign changes of y - y_eq: {o['sign_changes']}, of its "
-            f"increments: {o['slope_changes']} (all before n0)",
-            f"'first few' read as <= {few} impacts", judge(o["n0"] <= few and o["n_min"] <= few)))
-        verdicts.append(Verdict(
-            "The over-damped system enters the asymptotic regime immediately, without a disordered transient",
-            "sec. 8.1", f"{ctx}: first n after which |n tau_n mu/3 - 1| < {cfg['transient']:g} for good",
-            f"<= {few} impacts", f"{o['n10']:.0f}",
-            f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3)",
-            judge(o["n10"] <= few)))
-        frac = float(cfg["inelastic_energy_fraction"])
-        verdicts.append(Verdict(
-            "Macroscopically, the over-damped ball performs a single, totally inelastic impact",
-            "sec. 8.1", f"{ctx}: r_eff = gamma tau_1/(2|psi'(t_1^-)|), the constant restitution a rigid ball needs "
-            "for the first flight", "r_eff ~ 0",
-            f"r_eff = {o['r_eff']:.3g} (rebound height ratio r_eff^2 = {o['r_eff'] ** 2:.2g})",
-            f"r_eff^2 <= {frac:g}: less than {frac:.1%} of the drop height is regained", judge(o["r_eff"] ** 2 <= frac)))
+                          rest_gamma=d["gamma"], rest_mu=d["mu"], rest_scene=name,
+                          our_r_threshold=spec["our_r_threshold"])
+    if m.over:
+        m.od_name = name = str(dso.attrs.get("scene", "over-damped input"))
+        m.od = o = overdamped(dso, spec)
+        m.od_ctx = f"scene {name} (gamma = {o['gamma']:g}, mu = {o['mu']:g}, {o['n_events']} impacts)"
         w = o["w"]
         k = np.unique(np.geomspace(1, len(w), 400).astype(int)) - 1
         data = data.assign(od_n=("od_sample", (k + 1).astype(float), {"long_name": "impact index n", "units": "1"}),
@@ -354,7 +210,177 @@ def run(spec: dict, inputs: list) -> xr.Dataset:
         data.attrs.update(od_n0=o["n0"], od_n_min=o["n_min"], od_r_eff=o["r_eff"], od_transient=o["n10"],
                           od_gamma=o["gamma"], od_mu=o["mu"], od_scene=name)
     data.attrs.update(check=NAME, runtime_s=round(time.perf_counter() - t0, 2))
-    return verdict_dataset(verdicts, data, title=TITLE)
+    m.data = data
+    return m
+
+
+CLAIMS: list = []
+
+
+@claim(CLAIMS, "r-plateau", PAPER, "fig:rest-coeff")
+def r_plateau(m, spec) -> dict:
+    if not m.under:
+        return {}
+    d = m.d
+    if m.P < 3:
+        return {m.name: Verdict("Initially r_n is constant = exp(-mu T_xi)", "eq. rest-coefficient-function-of-mu",
+                                m.ctx, f"{d['r0']:.6f}", f"plateau of {m.P} bounces only", "-", NOT_CHECKABLE)}
+    return {m.name: Verdict(
+        "Initially r_n = f_{n+1}/f_n is constant and agrees with r = exp(-mu T_xi)",
+        "eq. rest-coefficient-function-of-mu, eq. Falcon-rest-coeff, fig. rest-coeff",
+        f"{m.ctx}: mean and spread of r_m = f_(m+1)/f_m, f_m = tau_(2m), over the plateau m = 1..{m.P} "
+        f"(f_m >= {spec['plateau_flight']:g} T_d)",
+        f"r = exp(-mu pi/sqrt(1-mu^2)) = {d['r0']:.6f}",
+        f"mean r = {m.rm:.6f}, std {m.rs:.2g}, mean - r = {m.rm - d['r0']:+.2g}, max |r_m - r| = "
+        f"{np.max(np.abs(d['r'] - d['r0'])):.2g}",
+        f"|mean - r| <= {m.tol:.2g} = {spec['r_sigmas']:g} x plateau std + the first-order gravity correction "
+        f"r mu T_xi max(delta_m) = {m.corr:.2g} (eq. rest-coefficient-function-of-mu is the gamma -> 0 limit)",
+        judge(abs(m.rm - d["r0"]) <= m.tol))}
+
+
+@claim(CLAIMS, "printed-ratio", ERRATUM, "fig:rest-coeff",
+       known_failure="eq. proper-rest-coeff prints before/after, Psidot_n/Psidot_{n+2} = 1/r")
+def printed_ratio(m, spec) -> dict:
+    if not (m.under and m.P >= 3):
+        return {}
+    bm = float(np.mean(m.d["before_after"]))
+    return {m.name: Verdict(
+        "r = Psidot_n/Psidot_{n+2}, Psidot_n, Psidot_{n+2} the centre-of-mass velocity before and after a "
+        "double impact, equals exp(-mu T_xi) (as printed)",
+        "eq. proper-rest-coeff", f"{m.ctx}: |psi'(t_(2m+1)^-)| / psi'(t_(2m+2)^+) over the plateau",
+        f"{m.d['r0']:.6f}", f"mean {bm:.6f} (= 1/{1 / bm:.6f})",
+        f"same tolerance, {m.tol:.2g}", judge(abs(bm - m.d["r0"]) <= m.tol))}
+
+
+@claim(CLAIMS, "ratio-after-before", BEYOND, "fig:rest-coeff")
+def ratio_after_before(m, spec) -> dict:
+    if not (m.under and m.P >= 3):
+        return {}
+    am, bm = float(np.mean(m.d["after"])), float(np.mean(m.d["before_after"]))
+    return {m.name: Verdict(
+        "Erratum candidate: the ratio is after/before, r = Psidot_{n+2}/Psidot_n = exp(-mu T_xi)",
+        "eq. proper-rest-coeff", f"{m.ctx}: psi'(t_(2m+2)^+)/psi'(t_(2m)^+) (successive take-off velocities) "
+        "and psi'(t_(2m+2)^+)/|psi'(t_(2m+1)^-)| over the plateau",
+        f"{m.d['r0']:.6f}", f"take-off ratio {am:.6f}; after/before {1 / bm:.6f}",
+        f"same tolerance, {m.tol:.2g}", judge(abs(am - m.d["r0"]) <= m.tol and abs(1 / bm - m.d["r0"]) <= m.tol))}
+
+
+@claim(CLAIMS, "contact-time", PAPER, "fig:rest-coeff")
+def contact_time(m, spec) -> dict:
+    if not (m.under and m.P >= 3):
+        return {}
+    cr, delta = m.d["contact_ratio"], m.d["delta"]
+    resid = cr - (1.0 - delta)
+    rsd = float(np.std(resid, ddof=1))
+    ctol = delta + spec["contact_sigmas"] * rsd
+    return {m.name: Verdict(
+        "A double impact (the contact) lasts about T_xi = pi/sqrt(1-mu^2), half the proper period",
+        "eq. char-times and the discussion after it",
+        f"{m.ctx}: tau_(2m-1)/T_xi for the contacts m = 1..{m.P + 1} of the plateau",
+        "1, shortened by gravity: 1 - delta_m, delta_m = gamma T_xi e^(mu T_xi)/(2 V_m) (first order)",
+        f"tau_c/T_xi in [{cr.min():.4f}, {cr.max():.4f}], mean {cr.mean():.4f}; delta_m in "
+        f"[{delta.min():.2g}, {delta.max():.2g}]; residual from 1 - delta_m: std {rsd:.2g}",
+        f"|tau_c/T_xi - 1| <= delta_m + {spec['contact_sigmas']:g} x residual std (residual spring vibration), "
+        "for every contact",
+        judge(bool(np.all(np.abs(cr - 1.0) <= ctol))))}
+
+
+@claim(CLAIMS, "our-r-band", PAPER, "eq:our-r")
+def our_r_band(m, spec) -> dict:
+    if not m.under:
+        return {}
+    o, thr = m.o, spec["our_r_threshold"]
+    return {m.name: Verdict(
+        f"Eq. our-r is accurate for large and small impact speeds (within {thr:.0%}) and fails in an "
+        "intermediate band (under-damped spring)", "eq. our-r, sec. Discussion",
+        f"{m.ctx}: restitution per macroscopic bounce, r = ratio of successive landing speeds u = Xdot "
+        f"({m.d['run_len']} double-impact bounces, then every impact); band = range of u where |r/r_our - 1| > {thr:g}",
+        "a bounded band [u1, u2] with r within the threshold outside it",
+        f"band [u1, u2] = [{o['u1']:.3g}, {o['u2']:.3g}] = [{o['u1'] / o['uc']:.3g}, {o['u2'] / o['uc']:.3g}] u_c "
+        f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces); max error above u2: "
+        f"{o['max_err_above']:.2g}, below u1: {o['max_err_below']:.2g}; 1 - r off by > "
+        f"{spec['dissipation_threshold']:.0%} in [{o['d1']:.3g}, {o['d2']:.3g}]",
+        f"threshold {thr:g} (brief); reproduced if failures are confined to a band strictly inside the "
+        "simulated speeds, with correct r on both sides",
+        judge(bool(np.isfinite(o["u1"]) and o["u1"] > np.min(o["u"]) and o["u2"] < np.max(o["u"])
+                   and (o["max_err_above"] <= thr) and (o["max_err_below"] <= thr))))}
+
+
+@claim(CLAIMS, "our-r-small-u", PAPER, "eq:our-r")
+def our_r_small_u(m, spec) -> dict:
+    if not m.under:
+        return {}
+    o, emax = m.o, float(spec["fit_err_max"])
+    tol_x = max(3.0 * o["drift_x"], float(spec["slope_floor"]))
+    return {m.name: Verdict(
+        "Small-u branch of eq. our-r: 1 - r = mu u/(3 gamma) with u the lower mass's impact speed",
+        "eq. our-r, eq. restituzione",
+        f"{m.ctx}: limit L of (1 - r_n)/(mu u_n/(3 gamma)), r_n = Xdot_(n+1)/Xdot_n, u_n = Xdot_n, fitted like the "
+        "limits of check main-theorem (corrections ln n/n, 1/n, sticky-spring terms)",
+        "L = 1", f"L = {o['slope_x']:.6f} +- {o['drift_x']:.2g} (last u ~ {o['u_tail']:.2g})",
+        f"|L - 1| <= {tol_x:.2g} = max(3 x fit error, {spec['slope_floor']:g}); not checkable without a fit "
+        f"window of a decade after the transient or with a fit error > {emax:g}",
+        judge(abs(o["slope_x"] - 1.0) <= tol_x)
+        if np.isfinite(o["drift_x"]) and o["drift_x"] <= emax else NOT_CHECKABLE)}
+
+
+@claim(CLAIMS, "our-r-centre-of-mass", BEYOND, "eq:our-r")
+def our_r_centre_of_mass(m, spec) -> dict:
+    if not m.under:
+        return {}
+    o, emax = m.o, float(spec["fit_err_max"])
+    tol_c = max(3.0 * o["drift_com"], 2.0 * float(spec["slope_floor"]))
+    return {m.name: Verdict(
+        "Erratum candidate: as a rigid-ball law (u = centre-of-mass speed, flight 2u/gamma, as in eq. "
+        "standard-model and the large-u branch) the small-u branch is 1 - 2 mu u/(3 gamma), not 1 - mu u/(3 gamma)",
+        "eq. our-r", f"{m.ctx}: limit of (1 - r_n)/(mu u_n/(3 gamma)) with r_n = tau_(n+1)/tau_n, u_n = gamma tau_n/2",
+        "2 (the printed law gives 1)", f"{o['slope_com']:.6f} +- {o['drift_com']:.2g}",
+        f"|L - 2| <= {tol_c:.2g} (as the row above)",
+        judge(abs(o["slope_com"] - 2.0) <= tol_c)
+        if np.isfinite(o["drift_com"]) and o["drift_com"] <= 2 * emax else NOT_CHECKABLE)}
+
+
+@claim(CLAIMS, "overdamped-monotone-approach", PAPER, "fig:very_rigid_poincare_overdamped")
+def overdamped_monotone_approach(m, spec) -> dict:
+    if not m.over:
+        return {}
+    o, few = m.od, int(spec["few_impacts"])
+    return {m.od_name: Verdict(
+        "The over-damped spring shrinks for the first few impacts, then expands, approaching its equilibrium "
+        "length monotonically from below", "figs. very_rigid_poincare_overdamped(_magni), sec. 8.1",
+        f"{m.od_ctx}: y - y_eq (= spring length - its equilibrium, x = 0) at the impacts: n0 = first impact from "
+        "which it is < 0 and increasing at every later impact; impact of the minimum; sign changes",
+        f"n0 and the minimum within the first few ({few}) impacts, then no sign change of y - y_eq or of its "
+        "increments",
+        f"n0 = {o['n0']}, minimum at impact {o['n_min']}, sign changes of y - y_eq: {o['sign_changes']}, of its "
+        f"increments: {o['slope_changes']} (all before n0)",
+        f"'first few' read as <= {few} impacts", judge(o["n0"] <= few and o["n_min"] <= few))}
+
+
+@claim(CLAIMS, "overdamped-no-transient", PAPER, "fig:very_rigid_poincare_overdamped")
+def overdamped_no_transient(m, spec) -> dict:
+    if not m.over:
+        return {}
+    o, few = m.od, int(spec["few_impacts"])
+    return {m.od_name: Verdict(
+        "The over-damped system enters the asymptotic regime immediately, without a disordered transient",
+        "sec. 8.1", f"{m.od_ctx}: first n after which |n tau_n mu/3 - 1| < {spec['transient']:g} for good",
+        f"<= {few} impacts", f"{o['n10']:.0f}",
+        f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3)",
+        judge(o["n10"] <= few))}
+
+
+@claim(CLAIMS, "overdamped-inelastic", PAPER, "fig:very_rigid_poincare_overdamped")
+def overdamped_inelastic(m, spec) -> dict:
+    if not m.over:
+        return {}
+    o, frac = m.od, float(spec["inelastic_energy_fraction"])
+    return {m.od_name: Verdict(
+        "Macroscopically, the over-damped ball performs a single, totally inelastic impact",
+        "sec. 8.1", f"{m.od_ctx}: r_eff = gamma tau_1/(2|psi'(t_1^-)|), the constant restitution a rigid ball needs "
+        "for the first flight", "r_eff ~ 0",
+        f"r_eff = {o['r_eff']:.3g} (rebound height ratio r_eff^2 = {o['r_eff'] ** 2:.2g})",
+        f"r_eff^2 <= {frac:g}: less than {frac:.1%} of the drop height is regained", judge(o["r_eff"] ** 2 <= frac))}
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
@@ -445,4 +471,4 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
 
 
 TITLE = "Restitution coefficient: r = exp(-mu T_xi), contact time, over-damped approach, eq. our-r"
-CHECK = Check(NAME, run, plot, TITLE)
+CHECK = Check(NAME, measure, tuple(CLAIMS), plot, TITLE)

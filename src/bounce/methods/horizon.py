@@ -362,9 +362,10 @@ PRECISIONS = ("float64", "longdouble", "mp_low")
 
 def _float64_run(gamma, mu, start, n):
     from bounce import Parameters, simulate
+    from bounce.events import IMPACT
 
     tr = simulate(Parameters(gamma, mu), start, max_events=int(n))
-    ok = tr.kind == 0
+    ok = tr.kind == IMPACT
     m = int(np.argmin(ok)) if not ok.all() else len(tr)  # impacts-only prefix
     return {"t": tr.t[:m].copy(), "xdot": tr.xdot[:m].copy(), "xidot": tr.xidot[:m].copy(),
             "eta": tr.eta[:m].copy(), "n": m}

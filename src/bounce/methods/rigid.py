@@ -89,12 +89,14 @@ import numpy as np
 from numba import njit
 
 from ..events import IMPACT, compensated_add
+from ..flight import EPS
 from ..model import InputError
 from ..sampling import sample_trajectory
 from ..simulate import simulate
+from ..theory import T_xi, rest_coefficient_function_of_mu, u_c
 from .base import MethodResult, MethodSpec
 
-EPS = 2.220446049250313e-16
+
 #: flights shorter than this times t end a collapsing run (the tail after them is below rounding)
 RESOLVED = EPS / 4096.0
 
@@ -103,21 +105,6 @@ CONSTANT, FIFTH, OUR_R, TIME_OF_CONTACT = 0, 1, 2, 3
 # kernel stop codes
 K_EVENTS, K_TIME, K_COLLAPSE, K_REST = 0, 1, 2, 3
 STOP_NAMES = ("max_events", "t_max", "collapse", "at_rest")
-
-
-def t_xi(mu: float) -> float:
-    """Half the proper period of the spring, T_xi = pi/sqrt(1 - mu^2) (eq. ``char-times``); inf for mu >= 1."""
-    return math.pi / math.sqrt((1.0 - mu) * (1.0 + mu)) if mu < 1.0 else math.inf
-
-
-def r_double_impact(mu: float) -> float:
-    """r = e^{-mu T_xi} (eq. ``rest-coefficient-function-of-mu``); 0 for mu >= 1 (no oscillation)."""
-    return math.exp(-mu * t_xi(mu)) if mu < 1.0 else 0.0
-
-
-def u_c(gamma: float, mu: float) -> float:
-    """Stitching speed of eq. ``our-r``: u_c = 3 gamma/mu (1 - e^{-mu T_xi})."""
-    return 3.0 * gamma / mu * (1.0 - r_double_impact(mu))
 
 
 def first_impact(params, initial) -> tuple[float, float, float, float]:
@@ -187,7 +174,7 @@ def _rigid_kernel(law, p1, p2, p3, p4, gamma, t1, u0, max_events, t_max, out_t, 
 def _law_parameters(law: int, params, setting: dict, u0: float) -> tuple[tuple, dict]:
     """Kernel parameters (p1..p4) and the resolved setting."""
     gamma, mu = params.gamma, params.mu
-    r_xi = r_double_impact(mu)
+    r_xi = rest_coefficient_function_of_mu(mu)
     if law == CONSTANT:
         r = float(setting.get("r", r_xi))
         if not 0.0 <= r <= 1.0:
@@ -206,10 +193,10 @@ def _law_parameters(law: int, params, setting: dict, u0: float) -> tuple[tuple, 
         flight = setting.get("flight", "rigid")
         if flight not in ("rigid", "dimer"):
             raise InputError(f"flight must be 'rigid' or 'dimer', got {flight!r}")
-        uc = u_c(gamma, mu) if mu > 0 else math.inf
+        uc = u_c(gamma, mu)
         return (r_xi, uc, mu / (3.0 * gamma), 2.0 if flight == "rigid" else 1.0), {"flight": flight, "u_c": uc}
     r = float(setting.get("r", r_xi))
-    tc = float(setting.get("t_c", t_xi(mu)))
+    tc = float(setting.get("t_c", T_xi(mu)))
     if not (0.0 <= r <= 1.0 and tc > 0.0):
         raise InputError(f"time-of-contact needs 0 <= r <= 1 and t_c > 0, got r={r!r}, t_c={tc!r}")
     return (r, tc, 0.0, 2.0), {"r": r, "t_c": tc}

@@ -10,8 +10,8 @@ i.e. s' = A s + b, stop at the terminal event "x crosses 0 downwards", apply
 the impact rule x' -> -x' (y, y' unchanged) and call ``solve_ivp`` again from
 the post-impact state.  Radau/BDF/LSODA get the (constant) Jacobian A.
 
-Lessons of ``benchmarks/scipy_baseline.py`` (re-implemented here, that file is
-untouched):
+The one solve_ivp driver of the project (the speed benchmark ``benchmarks/bench_simulator.py`` uses it
+too).  Lessons learnt:
 
 * the restart trap: with the event g = x, a first step after the restart that
   overshoots the whole (short) flight is flagged and brentq on [t_r, t_1] with

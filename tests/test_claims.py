@@ -1,0 +1,468 @@
+"""The claims of bounce.checks, one pytest parameter per claim, on small inputs (<= 2e5 events).
+
+* ``test_claim[group/id]``: every claim of every group judges its group's measurement: rows well formed,
+  stamped with their id, kind and subject; a statement of the paper, a claim beyond it or a self-test is
+  never ``not reproduced`` unless it declares a known failure, and an erratum (the text as printed) is
+  never ``reproduced``.
+* the ``*_flips_*`` tests show that claims can fail: inputs doctored to follow a wrong law flip the
+  verdict of the claim that tests the law (and only that one).
+* the contract: no module of bounce.checks imports another; claim ids are unique; each subject is
+  declared in config ``report.subjects``; one claim runs alone (``python -m bounce check``).
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+from mpmath import mp, mpf
+
+from bounce import Deviations, Parameters, State, simulate, theory
+from bounce.anomalies import construct_contact, monte_carlo
+from bounce.checks import errata, registry
+from bounce.checks import nongeneric as ng
+from bounce.checks import rigid_models
+from bounce.checks.base import ERRATUM, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, VERDICTS, read_verdicts
+from bounce.checks.sticky_lemmas import sticky_run
+from bounce.claims_cli import group_spec
+from bounce.claims_cli import main as check_main
+from bounce.events import DETACH, GRAZING, IMPACT, STICKY_START, contact_window
+from bounce.scenes import scene_dataset
+from bounce.sticky_study import sticky_duration
+
+ROOT = Path(__file__).resolve().parents[1]
+UD = {"gamma": 0.01, "mu": 0.01, "initial": {"psi": 6.0, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
+      "stop": {"events": 30000}, "keep": {"first": 3000, "log_samples": 1000}}
+OD = {"gamma": 1e-5, "mu": 2.0, "initial": {"psi": 0.25, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
+      "stop": {"events": 30000}, "keep": {"first": 3000, "log_samples": 1000}}
+REST = {"gamma": 1e-5, "mu": 0.01, "initial": {"psi": 0.25, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
+        "stop": {"events": 200000}}
+ODFULL = dict(OD, stop={"events": 3000}, keep=None)
+FALL = dict(UD, stop={"events": 3000}, keep=None)
+
+#: each group's config slice for the small inputs (schema defaults fill the rest)
+OVERRIDES = {
+    "main-theorem": {"fit": {"n_min": 1000}, "atlas": {"mu": [0.3, 2.0], "gamma": [1e-3], "psi0": 0.25,
+                                                       "events": 20000}, "plot_points": 100},
+    "static-equilibrium": {"asymptotic_min_events": 20000, "limit_bracket": 0.01},
+    "restitution": {},
+    "rigid-collapse": {"onefifth_bounces": 30000, "our_r_bounces": 30000, "tail_window": [1000, 5000]},
+    "contact-non-generic": {"seed": 2, "n_samples": 6, "events": 30, "n_constructed": 3, "tail": 50,
+                            "tail_fit": [2, 20], "alpha_over_gamma": [0.1, 10.0], "scan_n": 5},
+    "sticky-lemmas": {"params": [[0.01, 0.01], [0.1, 0.5], [0.01, 0.0]], "mc_samples": 30, "mc_events": 50,
+                      "n_alpha": 8, "construct_factors": [0.9, 1.0, 2.0], "sticky_ic_eps": [0.0, 1.0e-4, 1.0e-2],
+                      "horizon": 50.0},
+    "sticky-convergence": {"fit_eps_max": 1e-2, "band_mu": [0.0, 0.02]},
+    "errata": {"asym_events": 20000, "asym_checkpoints": [1000, 10000], "map_iterations": 100000},
+    "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
+                      "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
+}
+
+
+def spec(name: str, **changes) -> dict:
+    return group_spec(name, {**OVERRIDES[name], **changes}, ROOT)
+
+
+@functools.cache
+def scenes() -> dict:
+    return {"ud": scene_dataset(UD, "ud"), "od": scene_dataset(OD, "od"), "rest": scene_dataset(REST, "rest"),
+            "odfull": scene_dataset(ODFULL, "odfull"), "fall": scene_dataset(FALL, "fall"),
+            "odall": scene_dataset(dict(OD, keep=None, stop={"events": 100000}), "od")}
+
+
+def _synthetic_sticky_inputs(p_rms: float) -> list:
+    """sticky-convergence.nc and sticky-inference.nc with a known RMS law (no per-eps runs)."""
+    eps = np.array([1e-5, 1e-4, 1e-3, 1e-2])
+    conv = xr.Dataset({"rms": ("eps", 0.3 * eps**p_rms), "n_impacts": ("eps", (5 * eps**-0.8).astype(int))},
+                      coords={"eps": eps}, attrs={"t_c": sticky_duration(0.01, 0.01), "gamma": 0.01, "mu": 0.01,
+                                                  "samples": 101})
+    g = np.linspace(0.005, 0.015, 5)
+    m = np.linspace(0.0, 0.02, 3)
+    tc = np.array([[theory.t_c(gi, mi) for mi in m] for gi in g])
+    inf = xr.Dataset({"t_c": (("gamma", "mu"), tc)}, coords={"gamma": g, "mu": m},
+                     attrs={"ydot0": -0.1, "t_c_paper": 5.23})
+    return [conv, inf]
+
+
+def inputs_for(name: str) -> list:
+    s = scenes()
+    return {"main-theorem": [s["ud"], s["od"]], "static-equilibrium": [s["ud"], s["od"], s["rest"]],
+            "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
+            "sticky-convergence": _synthetic_sticky_inputs(1.6), "paper-figures": [s["fall"], s["rest"]]}.get(name, [])
+
+
+@functools.cache
+def measured(name: str):
+    return registry()[name].measure(spec(name), inputs_for(name))
+
+
+def row(ds_or_rows, claim_id: str):
+    rows = read_verdicts(ds_or_rows) if isinstance(ds_or_rows, xr.Dataset) else ds_or_rows
+    hits = [v for v in rows if v.claim_id == claim_id]
+    assert len(hits) == 1, (claim_id, [v.claim_id for v in rows])
+    return hits[0]
+
+
+ALL_CLAIMS = [(g.name, c) for g in registry().values() for c in g.claims]
+
+
+# --------------------------------------------------------------------------- every claim
+
+@pytest.mark.parametrize("name, claim", ALL_CLAIMS, ids=[f"{n}/{c.id}" for n, c in ALL_CLAIMS])
+def test_claim(name, claim):
+    group = registry()[name]
+    rows = group.verdicts(measured(name), spec(name), only=claim.id)
+    for v in rows:
+        assert v.verdict in VERDICTS and v.kind == claim.kind and v.subject == claim.subject
+        assert v.claim_id.split("[")[0] == f"{name}/{claim.id}"
+        for field in ("claim", "paper_ref", "computed", "expected", "measured", "tolerance"):
+            assert isinstance(getattr(v, field), str) and getattr(v, field).strip(), (field, v)
+        if claim.kind == ERRATUM:
+            assert v.verdict != REPRODUCED, ("the printed form holds after all", v)
+        elif not claim.known_failure:
+            assert v.verdict != NOT_REPRODUCED, v
+
+
+@pytest.mark.parametrize("name", sorted(registry()))
+def test_group_dataset_and_figure(name, tmp_path):
+    """The group's dataset has units and long names on every variable; its figure is written (PNG and PDF)."""
+    group = registry()[name]
+    m = measured(name)
+    from bounce.checks.base import verdict_dataset
+
+    ds = verdict_dataset(group.verdicts(m, spec(name)), m.data, title=group.title)
+    assert group.title and read_verdicts(ds)
+    for var in ds.variables.values():
+        assert "units" in var.attrs and "long_name" in var.attrs, var.name
+    outs = [tmp_path / f"{name}.png", tmp_path / f"{name}.pdf"]
+    group.plot(ds, spec(name), outs)
+    assert all(p.exists() and p.stat().st_size > 1000 for p in outs)
+
+
+# --------------------------------------------------------------------------- the contract
+
+def test_no_check_module_imports_another():
+    checks = ROOT / "src" / "bounce" / "checks"
+    names = {p.stem for p in checks.glob("*.py")} - {"__init__", "base"}
+    for path in checks.glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                assert node.module in (None, "base") or node.module not in names, (path.name, node.module)
+                assert not (node.module is None and set(a.name for a in node.names) & names), path.name
+
+
+def test_claim_ids_unique_and_subjects_declared():
+    subjects = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["report"]["subjects"]
+    ids = [cid for g in registry().values() for cid in g.claim_ids()]
+    assert len(ids) == len(set(ids))
+    for g in registry().values():
+        for c in g.claims:
+            assert c.kind in KINDS and c.subject in subjects, (g.name, c.id, c.subject)
+
+
+def test_one_claim_runs_alone(tmp_path, capsys):
+    """python -m bounce check GROUP/CLAIM on the datasets of --data; exit 0, one line per row."""
+    s = scenes()
+    for key, scene in (("ud", "asymptotic-underdamped"), ("od", "asymptotic-overdamped"), ("rest", "rest-coeff")):
+        s[key].to_netcdf(tmp_path / f"{scene}.nc")
+    overlay = tmp_path / "small.yaml"
+    overlay.write_text(yaml.safe_dump({"checks": {"static-equilibrium": OVERRIDES["static-equilibrium"]}}))
+    argv = ["static-equilibrium/energy-limit", "--config", str(ROOT / "config" / "config.yaml"), str(overlay),
+            "--schema", str(ROOT / "config" / "schema.yaml"), "--data", str(tmp_path)]
+    assert check_main(argv) == 0
+    out = capsys.readouterr().out
+    assert out.count("static-equilibrium/energy-limit[") == 3 and "energy-rate" not in out
+    assert check_main(["static-equilibrium/no-such-claim"]) == 2
+
+
+# --------------------------------------------------------------------------- main-theorem
+
+def test_restart_reproduces_thinned_events():
+    """dataset_series on a thinned dataset gives the same tau_n, Xdot_(n+1) as the full simulation."""
+    from bounce.checks.asymptotics import dataset_series
+
+    full = scene_dataset(dict(UD, keep=None))
+    s_thin = dataset_series(scenes()["ud"])
+    s_full = dataset_series(full)
+    idx = np.searchsorted(s_full["n"], s_thin["n"])
+    assert np.array_equal(s_full["n"][idx], s_thin["n"])
+    assert np.array_equal(s_full["tau"][idx], s_thin["tau"])
+    assert np.array_equal(s_full["xdot_next"][idx], s_thin["xdot_next"])
+
+
+def _main_theorem(inputs, **changes):
+    g = registry()["main-theorem"]
+    sp = spec("main-theorem", **changes)
+    sp["atlas"] = None  # no atlas: the scene claims only
+    return g.verdicts(g.measure(sp, inputs), sp)
+
+
+def test_main_theorem_flips_on_wrong_flight_law():
+    """tau_n ~ 6/(mu n) (all flights doubled) must fail the tau row and leave the Xdot row alone.
+
+    Complete records: in a thinned file the tail is re-simulated from the stored states."""
+    bad = scenes()["odall"].copy(deep=True)
+    bad["tau"] = bad["tau"] * 2.0
+    rows = _main_theorem([bad])
+    assert row(rows, "main-theorem/tau-limit[od]").verdict == NOT_REPRODUCED
+    assert row(rows, "main-theorem/xdot-limit[od]").verdict == REPRODUCED
+    assert row(rows, "main-theorem/ratio-limit[od]").verdict == NOT_REPRODUCED
+    assert row(_main_theorem([scenes()["odall"]]), "main-theorem/tau-limit[od]").verdict == REPRODUCED
+
+
+def _with_exponent(ds, p_new, mu=2.0):
+    """The scene with the correction of n tau_n mu/3 re-scaled from n^-p_th to n^-p_new (equal at n = 1000)."""
+    bad = ds.copy(deep=True)
+    n = bad["event"].values.astype(float)[1:]
+    tau = bad["tau"].values.copy()
+    q = n * tau[1:] * mu / 3.0
+    tau[1:] *= 1.0 + (q - 1.0) * ((n / 1000.0) ** (theory.correction_exponent(mu) - p_new) - 1.0) / q
+    bad["tau"] = ("event", tau, bad["tau"].attrs)
+    return bad
+
+
+def test_main_theorem_flips_on_wrong_decay_exponent():
+    """A correction decaying like n^-0.7 (n^-0.3) instead of the n^-0.439 of mu = 2 fails the exponent row."""
+    cid = "main-theorem/tau-decay-exponent[od]"
+    assert row(_main_theorem([scenes()["odall"]]), cid).verdict == REPRODUCED
+    assert row(_main_theorem([_with_exponent(scenes()["odall"], 0.7)]), cid).verdict == NOT_REPRODUCED
+    assert row(_main_theorem([_with_exponent(scenes()["odall"], 0.3)]), cid).verdict != REPRODUCED
+
+
+# --------------------------------------------------------------------------- static-equilibrium
+
+def _equilibrium(inputs):
+    g = registry()["static-equilibrium"]
+    return g.run(spec("static-equilibrium"), inputs)
+
+
+def test_equilibrium_flips_on_energy_increase():
+    bad = scenes()["rest"].copy(deep=True)
+    e = bad["energy_excess"].values.copy()
+    e[500] = e[499] * (1 + 1e-12)
+    bad["energy_excess"] = ("event", e, bad["energy_excess"].attrs)
+    cid = "static-equilibrium/energy-non-increasing[rest]"
+    assert row(_equilibrium([bad]), cid).verdict == NOT_REPRODUCED
+    assert row(_equilibrium([scenes()["rest"]]), cid).verdict == REPRODUCED
+
+
+def test_equilibrium_flips_on_wrong_rates():
+    """Xdot_n decaying like n^-1/2 (rate mu/6 in t) fails the Xdot rate row."""
+    bad = scenes()["ud"].copy(deep=True)
+    n = bad["event"].values + 1.0
+    bad["xdot"] = bad["xdot"] * np.sqrt(n)
+    assert row(_equilibrium([bad]), "static-equilibrium/xdot-rate[ud]").verdict == NOT_REPRODUCED
+    good = _equilibrium([scenes()["ud"]])
+    assert row(good, "static-equilibrium/xdot-rate[ud]").verdict == REPRODUCED
+    assert row(good, "static-equilibrium/printed-energy-limit[ud]").verdict == NOT_REPRODUCED  # stays an erratum
+
+
+# --------------------------------------------------------------------------- restitution
+
+def _restitution(inputs):
+    return registry()["restitution"].run(spec("restitution"), inputs)
+
+
+def test_restitution_flips_on_wrong_plateau():
+    bad = scenes()["rest"].copy(deep=True)
+    tau = bad["tau"].values.copy()
+    m = np.arange(1, 200)
+    tau[2 * m] *= 0.99**m  # r_m 1 % low over the double-impact regime
+    bad["tau"] = ("event", tau, bad["tau"].attrs)
+    assert row(_restitution([bad]), "restitution/r-plateau[rest]").verdict == NOT_REPRODUCED
+    assert row(_restitution([scenes()["rest"]]), "restitution/r-plateau[rest]").verdict == REPRODUCED
+
+
+def test_restitution_flips_on_wrong_small_u_law():
+    bad = scenes()["rest"].copy(deep=True)
+    bad["xdot"] = bad["xdot"] / 1.05  # speeds 5 % low for their restitution: 1 - r = 1.05 mu u/(3 gamma)
+    assert row(_restitution([bad]), "restitution/our-r-small-u[rest]").verdict == NOT_REPRODUCED
+    assert row(_restitution([scenes()["rest"]]), "restitution/our-r-small-u[rest]").verdict == REPRODUCED
+
+
+def test_restitution_flips_on_overdamped_from_above():
+    bad = scenes()["odfull"].copy(deep=True)
+    bad["y_minus_yeq"] = -bad["y_minus_yeq"]
+    cid = "restitution/overdamped-monotone-approach[odfull]"
+    assert row(_restitution([bad]), cid).verdict == NOT_REPRODUCED
+    assert row(_restitution([scenes()["odfull"]]), cid).verdict == REPRODUCED
+
+
+# --------------------------------------------------------------------------- rigid-collapse
+
+def _rigid(inputs):
+    return registry()["rigid-collapse"].run(spec("rigid-collapse"), inputs)
+
+
+def test_rigid_flips_on_wrong_closed_form(monkeypatch):
+    real = rigid_models.constant_r
+
+    def wrong(t1, v1, r, gamma, bounces):
+        out = real(t1, v1, r, gamma, bounces)
+        out["t_sum"] = out["t_sum"] * (1 + 1e-9)
+        return out
+
+    monkeypatch.setattr(rigid_models, "constant_r", wrong)
+    assert row(_rigid([scenes()["ud"]]), "rigid-collapse/constant-r-collapse").verdict == NOT_REPRODUCED
+
+
+def test_rigid_flips_on_wrong_exponent(monkeypatch):
+    """A map with beta = 3/2 (n^2 u_n -> const) must fail the beta = 6/5 rows."""
+    real = rigid_models.iterate_map
+    monkeypatch.setattr(rigid_models, "iterate_map",
+                        lambda u0, step, bounces: real(u0, lambda x: x - 1e-1 * x**1.5, bounces))
+    ds = _rigid([scenes()["ud"]])
+    assert row(ds, "rigid-collapse/onefifth-limit").verdict == NOT_REPRODUCED
+    assert row(ds, "rigid-collapse/onefifth-collapse").verdict == NOT_REPRODUCED
+
+
+def test_rigid_flips_on_collapsing_dimer():
+    """A 'dimer' whose impact times grow twice as fast in ln n fails the no-collapse row."""
+    bad = scenes()["ud"].copy(deep=True)
+    bad["t"] = bad["t"] * 2.0
+    assert row(_rigid([bad]), "rigid-collapse/dimer-no-collapse").verdict == NOT_REPRODUCED
+
+
+# --------------------------------------------------------------------------- contact-non-generic
+
+def test_constructed_grazing_and_sticky_onset_are_classified():
+    """Backward-evolved anomalous contacts come back as grazing / sticky_start at t = T (classifier window)."""
+    g, m = 0.01, 0.3
+    with mp.workdps(40):
+        a, eta = theory.sticky_onset(mpf(g), mpf(m), mpf(g))  # alpha = gamma: far from the polish defect
+    start, T, acc, jerk, scale = construct_contact(g, m, a, eta, 0, 0.4)
+    d3 = contact_window(scale, acc, jerk)[3]
+    tr = simulate(Parameters(g, m), start, max_events=1)
+    assert tr.kind[0] == STICKY_START and abs(tr.t[0] - T) <= 2 * d3
+    with mp.workdps(40):
+        eta_g = eta + mpf(0.1 * g)
+    start, T, acc, jerk, scale = construct_contact(g, m, a, eta_g, 0, 0.4)
+    d2 = contact_window(scale, acc, jerk)[2]
+    tr = simulate(Parameters(g, m), start, max_events=1)
+    assert tr.kind[0] == GRAZING and abs(tr.t[0] - T) <= 2 * d2
+
+
+def test_classifier_switches_at_its_window():
+    out = ng.speed_scan(spec("contact-non-generic", scan_ratio=[0.1, 10.0], scan_n=2))
+    assert out["kinds"].tolist() == [STICKY_START, IMPACT]  # v = v_tol/10: tangential; v = 10 v_tol: impact
+
+
+def test_monte_carlo_small_has_no_anomalies_and_the_requested_energies():
+    mc = monte_carlo(spec("contact-non-generic", seed=5, n_samples=9, events=40, tail=50))
+    assert mc["counts"][:, [GRAZING, STICKY_START]].sum() == 0
+    assert mc["counts"].sum() == 9 * 40
+    for i in range(9):
+        p = Parameters(mc["gamma"][i], mc["mu"][i])
+        d = Deviations(mc["x"][i], mc["u"][i], mc["a"][i], mc["eta"][i])
+        e = d.to_state(p).energy(p) - p.energy_min
+        assert abs(e - mc["dE"][i]) <= 1e-9 * mc["dE"][i] + 1e-15
+    assert np.all(mc["min_margin"] > 1.0) and np.all((mc["min_ratio"] > 0) & (mc["min_ratio"] <= 1))
+
+
+def test_nongeneric_verdicts_on_a_small_sample():
+    m = measured("contact-non-generic")
+    g = registry()["contact-non-generic"]
+    rows = g.verdicts(m, spec("contact-non-generic"))
+    for cid in ("no-sticky-start", "no-grazing", "constructed-sticky-onsets", "constructed-grazings"):
+        assert row(rows, f"contact-non-generic/{cid}").verdict == REPRODUCED  # constructions away from the defect
+    assert row(rows, "contact-non-generic/nowhere-dense").verdict == NOT_CHECKABLE
+
+
+def test_nongeneric_claims_measure_lazily():
+    """One claim computes only what it reads: the speed scan does not run the Monte Carlo."""
+    g = registry()["contact-non-generic"]
+    m = g.measure(spec("contact-non-generic", scan_n=3), [])
+    rows = g.verdicts(m, spec("contact-non-generic", scan_n=3), only="classifier-switch")
+    assert len(rows) == 1 and "mc" not in vars(m) and "scan" in vars(m)
+
+
+# --------------------------------------------------------------------------- sticky-lemmas
+
+@pytest.mark.parametrize("g, m", [(0.01, 0.01), (0.1, 0.5)])
+def test_eps_star_separates_finite_from_infinite_sticky_events(g, m):
+    e, t_star = theory.eps_star(g, m)
+    assert sticky_run(g, m, e * (1 - 1e-6))[0] == math.inf
+    d, _, _ = sticky_run(g, m, e * (1 + 1e-6))
+    assert math.isfinite(d) and abs(d - t_star) < 0.05 * t_star  # detach near the tangency time
+
+
+def test_duration_bounded_below_and_decreasing():
+    g, m = 0.01, 0.01
+    al = np.geomspace(0.02, 10.0, 6)
+    d = np.array([sticky_run(g, m, a)[0] for a in al])
+    inf = theory.sticky_duration_infimum(m)
+    assert np.all(np.diff(d) < 0) and np.all(d > inf) and d[-1] - inf < 0.01
+
+
+def test_minimum_energy_matches_eq_min_sticky_energy():
+    from bounce.anomalies import minimum_sticky_energy
+
+    g, m = 0.02, 0.7
+    e, yd, z, acc, _ = minimum_sticky_energy(g, m)
+    assert abs(e - g * g / 2 - (3 - 2 * m * m) * g * g / (2 * (1 + 2 * m * m))) < 1e-9 * g * g
+    assert abs(yd - 4 * g * m / (1 + 2 * m * m)) < 3e-5 * 4 * g and abs(acc) < 1e-8 * g
+
+
+def test_alpha_zero_edge_case_reported():
+    """The exact alpha_s = 0 state must be reported as failing while the simulator detaches at once."""
+    g, m = 0.1, 0.5
+    tr = simulate(Parameters(g, m), Deviations(0.0, 0.0, 2 * m * g, 2 * g - 4 * m * m * g), max_events=3)
+    defect = len(tr) > 1 and tr.kind[1] == DETACH and tr.t[1] == 0.0
+    # the claim zero-alpha-keeps-contact is exercised in test_claim; here: the defect is what the row describes
+    assert defect or tr.stop_reason == "sticky_forever"
+
+
+# --------------------------------------------------------------------------- sticky-convergence
+
+@pytest.mark.parametrize("p_rms, verdict", [(1.6, REPRODUCED), (0.9, NOT_REPRODUCED)])
+def test_sticky_convergence_verdicts_on_synthetic_data(p_rms, verdict, tmp_path):
+    g = registry()["sticky-convergence"]
+    sp = spec("sticky-convergence")
+    ds = g.run(sp, _synthetic_sticky_inputs(p_rms))
+    assert row(ds, "sticky-convergence/rms-superlinear").verdict == verdict  # faster than linearly
+    assert row(ds, "sticky-convergence/impacts-unbounded").verdict == REPRODUCED
+    assert row(ds, "sticky-convergence/rms-quadrature").verdict == NOT_CHECKABLE  # no per-eps runs
+    assert row(ds, "sticky-convergence/t_c").verdict == REPRODUCED  # t_c = 5.23...
+    unstated = row(ds, "sticky-convergence/unstated-parameters")
+    assert unstated.verdict == NOT_CHECKABLE and "states neither" in unstated.computed
+    g.plot(ds, sp, [tmp_path / "sc.png"])
+
+
+# --------------------------------------------------------------------------- errata
+
+def test_one_sided_jumps_at_an_impact():
+    g, m = 0.05, 0.3
+    tr = simulate(Parameters(g, m), State.from_psi_xi(0.3, 0.0, 0.0, 0.0), max_events=4)
+    n = 2
+    J = errata.jumps(tr, tr.t[n], min(tr.tau[n], tr.tau[n + 1]) / 40)
+    X = tr.xdot[n]
+    assert abs(J["x1"] - 2 * X) < 1e-8 * X
+    assert abs(J["x2"] + 2 * m * X) < 1e-6 * X  # one-sided degree-6 fits: truncation ~1e-7
+    assert abs(J["x3"] - (4 * m * m - 1) * X) < 1e-4 * X
+
+
+def test_rest_coefficient_ratio_is_inverted_in_print():
+    """eq. proper-rest-coeff: Psidot_n / Psidot_{n+2} is 1/r, not r = e^{-mu T_xi}."""
+    g, m = 1e-5, 0.01
+    tr = simulate(Parameters(g, m), State.from_psi_xi(0.25, 0.0, 0.0, 0.0), max_events=6)
+    psid = tr.xdot + tr.xidot
+    r = theory.rest_coefficient_function_of_mu(m)
+    assert abs(psid[1] / psid[3] - 1 / r) < 1e-3 and abs(psid[3] / psid[1] - r) < 1e-3
+
+
+def test_sticky_dissipation_is_half_mu_int_ydot2():
+    from scipy.integrate import simpson
+
+    from bounce.sampling import sample_trajectory
+
+    p = Parameters(0.01, 0.01)
+    tr = simulate(p, State.sticky_ic(p, 0.0), max_events=2)
+    grid = np.linspace(0, tr.t[1], 4001)
+    integral = simpson(sample_trajectory(tr, grid)["ydot"] ** 2, x=grid)
+    assert abs((tr.energy_excess[0] - tr.energy_excess[1]) / (0.01 * integral) - 0.5) < 1e-8
