@@ -10,6 +10,7 @@
 * failures are reported, not raised: the paper's drop has the spring exactly at rest length, where
   the Taylor coefficients of |xi|^(1/2) are not finite (stall at impact 0); a cooldown longer than
   the flights skips impacts (missed_impact);
+* samples of y (continuous output) agree with the exact solver's to 1e-12;
 * bad settings get one line naming the setting.
 """
 
@@ -146,3 +147,12 @@ def test_cooldown_longer_than_the_flights_is_a_missed_impact():
 def test_bad_settings_name_the_setting(setting, word):
     with pytest.raises(ValueError, match=word):
         run(Parameters(GAMMA, MU), DROP, setting, max_events=1)
+
+
+def test_samples_of_y_match_exact_solver():
+    p = Parameters(GAMMA, MU)
+    times = np.linspace(0.0, 120.0, 41)  # across the first impacts of the drop
+    res = run(p, DROP, max_events=10, sample_times=times)
+    exact = registry()["exact"].run(p, DROP, max_events=10, sample_times=times)
+    assert not np.isnan(res.y).any()
+    assert np.abs(res.y - exact.y).max() < 1e-12

@@ -41,8 +41,8 @@ from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` 
 heyoka is imported on first use, so listing the methods does not load it.
 
 Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, gamma = mu = 0.01, one core of a
-shared machine, medians of 5): ~3e4 impacts/s on the linear drop and deep states (bounce 130-220x
-faster), 2-3e4 on Hertz; one-step errors against the mpmath reference ~3e-15 (linear), up to
+shared machine, medians of 5, two runs): 3-6e4 impacts/s on the linear drop and deep states
+(bounce 130-220x faster), 2-5e4 on Hertz; one-step errors against the mpmath reference ~3e-15 (linear), up to
 3e-13 on Hertz flights that pass xi = 0, 5e-16 deep.  With its automatic cooldown heyoka skips
 impacts once x' after an impact falls to ~3e-9 (its cooldown, ~2e-15/x', then outlasts the flight,
 ~x'/gamma; asymptotic impact index ~1e9 linear, ~5e9 Hertz); a fixed cooldown of 1e-15 or 1e-12 stays clean to
