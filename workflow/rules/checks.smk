@@ -7,16 +7,11 @@ datasets it declares (config `checks.<name>.inputs`)."""
 DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
 
 
-def check_inputs(w):
-    """The datasets a claim group declares in config `checks.<name>.inputs`, in order."""
-    return [f for name in config["checks"][w.name]["inputs"]
-            for f in DATASET_GROUPS.get(name, [f"results/data/{name}.nc"])]
-
-
 rule check:
-    """Run one claim group of config `checks` on the datasets it declares."""
+    """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)."""
     input:
-        check_inputs,
+        lambda w: [f for name in config["checks"][w.name]["inputs"]
+                   for f in DATASET_GROUPS.get(name, [f"results/data/{name}.nc"])],
     output:
         nc="results/checks/{name}.nc",
         png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),

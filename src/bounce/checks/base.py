@@ -134,6 +134,11 @@ class Check:
         return verdict_dataset(self.verdicts(m, spec), m.data, title=self.title)
 
 
+def variable(dims, values, long_name: str, units: str = "1", **extra) -> tuple:
+    """(dims, array, attrs) of a dataset variable with its long name and units (CF), for ``xr.Dataset``."""
+    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
+
+
 def judge(ok: bool) -> str:
     return REPRODUCED if ok else NOT_REPRODUCED
 

@@ -40,13 +40,10 @@ from ..theory import (
     u_c,
     ydot_min_Esticky,
 )
-from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Verdict, judge, recorded
+from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Verdict, judge, recorded, variable
 
 NAME = "errata"
 
-
-def _v(dims, values, long_name, units="1", **extra):
-    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
 
 
 def _row(claim, ref, computed, expected, measured, tolerance, ok):
@@ -135,12 +132,12 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
           "argument is unaffected",
         "|ratio| < 0.01 would reproduce the print", abs(rem_at[-1]) < 0.01)
     data.update({
-        "asym_checkpoint": _v("checkpoint", np.array(checkpoints), "impact index N of the checkpoints"),
-        "asym_ratio_x3": _v("checkpoint", np.array(r16_at), "(Xdot/tau + Xddot/2)/(Xdddot tau)"),
-        "asym_energy": _v("asym_sample", tr.energy[np.unique(np.geomspace(1, n_ev, 300).astype(int)) - 1],
+        "asym_checkpoint": variable("checkpoint", np.array(checkpoints), "impact index N of the checkpoints"),
+        "asym_ratio_x3": variable("checkpoint", np.array(r16_at), "(Xdot/tau + Xddot/2)/(Xdddot tau)"),
+        "asym_energy": variable("asym_sample", tr.energy[np.unique(np.geomspace(1, n_ev, 300).astype(int)) - 1],
                           "energy after impact n"),
-        "asym_n": _v("asym_sample", np.unique(np.geomspace(1, n_ev, 300).astype(int)), "impact index n"),
-        "asym_r16": _v("asym_sample", r16[np.minimum(np.unique(np.geomspace(1, n_ev, 300).astype(int)) - 1, r16.size - 1)],
+        "asym_n": variable("asym_sample", np.unique(np.geomspace(1, n_ev, 300).astype(int)), "impact index n"),
+        "asym_r16": variable("asym_sample", r16[np.minimum(np.unique(np.geomspace(1, n_ev, 300).astype(int)) - 1, r16.size - 1)],
                        "(Xdot/tau + Xddot/2)/(Xdddot tau) at impact n"),
     })
 
@@ -184,8 +181,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
             f"{coef:.4f} Xdot_n", "measured/Xdot_n: " + ", ".join(f"{v:.6f}" for v in meas / X),
             "10 x |estimate(h) - estimate(h/2)| (measured truncation error), per impact",
             X.size >= 3 and bool(np.all(np.abs(meas - coef * X) <= tol)))
-        data[f"jump_{key}"] = _v("impact", meas, f"measured jump {text.split('=')[0].strip()}")
-    data["jump_Xdot"] = _v("impact", X, "Xdot_n at the impacts of the jump test")
+        data[f"jump_{key}"] = variable("impact", meas, f"measured jump {text.split('=')[0].strip()}")
+    data["jump_Xdot"] = variable("impact", X, "Xdot_n at the impacts of the jump test")
 
     # [xi'^2] = -Xdot_n ydot(t_n), eq. xidot2-jump, from the dense output just before and after
     n = 2
@@ -341,10 +338,10 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         f"{smp0['ydot'][1]:.10g}", "1e-8 relative (finite-difference error)",
         abs(smp0["ydot"][1] + 2 * gs) <= 1e-8 * 2 * gs)
     data.update({
-        "expansion_t": _v("t_exp", ts, "time since the sticky onset"),
-        "expansion_series": _v("t_exp", series, "the paper's series"),
-        "expansion_ydot2": _v("t_exp", y2_t, "ydot^2(s_n + t)"),
-        "expansion_integral": _v("t_exp", I_t, "int_0^t ydot^2"),
+        "expansion_t": variable("t_exp", ts, "time since the sticky onset"),
+        "expansion_series": variable("t_exp", series, "the paper's series"),
+        "expansion_ydot2": variable("t_exp", y2_t, "ydot^2(s_n + t)"),
+        "expansion_integral": variable("t_exp", I_t, "int_0^t ydot^2"),
     })
 
     # ------------------------------------------------------------ section 8.1

@@ -54,13 +54,10 @@ from ..fitting import tail_exponent
 from ..model import Parameters
 from ..simulate import simulate
 from ..theory import contact_derivatives, sticky_onset
-from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge
+from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge, variable
 
 NAME = "contact-non-generic"
 
-
-def _v(dims, values, long_name, units="1", **extra):
-    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
 
 
 def hexs(*values) -> str:
@@ -368,44 +365,44 @@ def _dataset(m, spec: dict) -> xr.Dataset:
     n_mc = len(mc["gamma"])
     data = xr.Dataset(
         {
-            "mc_gamma": _v("sample", mc["gamma"], "gamma of the Monte-Carlo sample"),
-            "mc_mu": _v("sample", mc["mu"], "mu of the Monte-Carlo sample"),
-            "mc_regime": _v("sample", mc["regime"].astype(np.int8), "damping regime", flag_values=[0, 1, 2],
+            "mc_gamma": variable("sample", mc["gamma"], "gamma of the Monte-Carlo sample"),
+            "mc_mu": variable("sample", mc["mu"], "mu of the Monte-Carlo sample"),
+            "mc_regime": variable("sample", mc["regime"].astype(np.int8), "damping regime", flag_values=[0, 1, 2],
                             flag_meanings="under_damped critically_damped over_damped"),
-            "mc_energy_excess": _v("sample", mc["dE"], "initial E - E_m"),
-            "mc_x0": _v("sample", mc["x"], "initial height of the lower mass"),
-            "mc_xdot0": _v("sample", mc["u"], "initial velocity of the lower mass"),
-            "mc_xidot0": _v("sample", mc["a"], "initial xi'"),
-            "mc_eta0": _v("sample", mc["eta"], "initial eta = xi + gamma"),
-            "mc_count": _v(("sample", "kind"), mc["counts"], "number of events of each kind"),
-            "mc_min_ratio": _v("sample", mc["min_ratio"], "smallest |Xdot_n| / launch speed of its flight"),
-            "mc_min_ratio_event": _v("sample", mc["min_ratio_at"], "event index of the smallest ratio"),
-            "mc_min_margin": _v("sample", mc["min_margin"], "smallest |Xdot_n| / v_tol (classifier window)"),
-            "mc_min_margin_event": _v("sample", mc["min_margin_at"], "event index of the smallest margin"),
-            "tail_ratio": _v("rank", mc["tail_ratio"], "ranked smallest |Xdot_n| / launch speed over the sample"),
-            "tail_margin": _v("rank", mc["tail_margin"], "ranked smallest |Xdot_n| / v_tol over the sample"),
-            "st_gamma": _v("onset", sticky["gamma"], "gamma of the constructed sticky onset"),
-            "st_mu": _v("onset", sticky["mu"], "mu of the constructed sticky onset"),
-            "st_alpha": _v("onset", sticky["size"], "alpha_s = 4 gamma mu - Ydot_s of the onset"),
-            "st_T": _v("onset", sticky["T"], "backward flight time T"),
-            "st_x0": _v("onset", sticky["x0"], "height of the backward-evolved start state"),
-            "st_t_first": _v("onset", sticky["t_first"], "time of the first simulated event"),
-            "st_first_kind": _v("onset", sticky["first_kind"], "kind of the first simulated event",
+            "mc_energy_excess": variable("sample", mc["dE"], "initial E - E_m"),
+            "mc_x0": variable("sample", mc["x"], "initial height of the lower mass"),
+            "mc_xdot0": variable("sample", mc["u"], "initial velocity of the lower mass"),
+            "mc_xidot0": variable("sample", mc["a"], "initial xi'"),
+            "mc_eta0": variable("sample", mc["eta"], "initial eta = xi + gamma"),
+            "mc_count": variable(("sample", "kind"), mc["counts"], "number of events of each kind"),
+            "mc_min_ratio": variable("sample", mc["min_ratio"], "smallest |Xdot_n| / launch speed of its flight"),
+            "mc_min_ratio_event": variable("sample", mc["min_ratio_at"], "event index of the smallest ratio"),
+            "mc_min_margin": variable("sample", mc["min_margin"], "smallest |Xdot_n| / v_tol (classifier window)"),
+            "mc_min_margin_event": variable("sample", mc["min_margin_at"], "event index of the smallest margin"),
+            "tail_ratio": variable("rank", mc["tail_ratio"], "ranked smallest |Xdot_n| / launch speed over the sample"),
+            "tail_margin": variable("rank", mc["tail_margin"], "ranked smallest |Xdot_n| / v_tol over the sample"),
+            "st_gamma": variable("onset", sticky["gamma"], "gamma of the constructed sticky onset"),
+            "st_mu": variable("onset", sticky["mu"], "mu of the constructed sticky onset"),
+            "st_alpha": variable("onset", sticky["size"], "alpha_s = 4 gamma mu - Ydot_s of the onset"),
+            "st_T": variable("onset", sticky["T"], "backward flight time T"),
+            "st_x0": variable("onset", sticky["x0"], "height of the backward-evolved start state"),
+            "st_t_first": variable("onset", sticky["t_first"], "time of the first simulated event"),
+            "st_first_kind": variable("onset", sticky["first_kind"], "kind of the first simulated event",
                                 flag_values=[0, 1, 2, 3], flag_meanings=" ".join(KIND_NAMES)),
-            "st_window": _v("onset", sticky["window"], "classifier time window min(delta2, delta3) at the onset"),
-            "st_jerk": _v("onset", sticky["jerk"], "x''' at the onset"),
-            "gr_gamma": _v("graze", graze["gamma"], "gamma of the constructed grazing"),
-            "gr_mu": _v("graze", graze["mu"], "mu of the constructed grazing"),
-            "gr_acc": _v("graze", graze["size"], "x'' at the grazing"),
-            "gr_T": _v("graze", graze["T"], "backward flight time T"),
-            "gr_t_first": _v("graze", graze["t_first"], "time of the first simulated event"),
-            "gr_first_kind": _v("graze", graze["first_kind"], "kind of the first simulated event",
+            "st_window": variable("onset", sticky["window"], "classifier time window min(delta2, delta3) at the onset"),
+            "st_jerk": variable("onset", sticky["jerk"], "x''' at the onset"),
+            "gr_gamma": variable("graze", graze["gamma"], "gamma of the constructed grazing"),
+            "gr_mu": variable("graze", graze["mu"], "mu of the constructed grazing"),
+            "gr_acc": variable("graze", graze["size"], "x'' at the grazing"),
+            "gr_T": variable("graze", graze["T"], "backward flight time T"),
+            "gr_t_first": variable("graze", graze["t_first"], "time of the first simulated event"),
+            "gr_first_kind": variable("graze", graze["first_kind"], "kind of the first simulated event",
                                 flag_values=[0, 1, 2, 3], flag_meanings=" ".join(KIND_NAMES)),
-            "gr_window": _v("graze", graze["window"], "classifier time window min(delta2, delta3) at the grazing"),
-            "scan_ratio": _v("scan", scan["ratios"], "arrival speed / v_tol"),
-            "scan_kind": _v("scan", scan["kinds"], "kind of the simulated contact", flag_values=[0, 1, 2, 3],
+            "gr_window": variable("graze", graze["window"], "classifier time window min(delta2, delta3) at the grazing"),
+            "scan_ratio": variable("scan", scan["ratios"], "arrival speed / v_tol"),
+            "scan_kind": variable("scan", scan["kinds"], "kind of the simulated contact", flag_values=[0, 1, 2, 3],
                             flag_meanings=" ".join(KIND_NAMES)),
-            "scan_recorded_speed": _v("scan", scan["speeds"], "|xdot| recorded after the contact"),
+            "scan_recorded_speed": variable("scan", scan["speeds"], "|xdot| recorded after the contact"),
         },
         coords={"kind": ("kind", np.array(KIND_NAMES, dtype=object), {"long_name": "event kind", "units": "1"})},
         attrs={"check": NAME, "n_samples": n_mc, "events_per_sample": int(spec["events"]), "seed": int(spec["seed"]),

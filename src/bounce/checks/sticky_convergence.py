@@ -22,13 +22,10 @@ import xarray as xr
 from ..io import sample_dataset
 from ..fitting import fit_loglog
 from .. import theory
-from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge
+from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge, variable
 
 NAME = "sticky-convergence"
 
-
-def _v(dims, values, long_name, units="1", **extra):
-    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
 
 
 def rms_on_grid(run: xr.Dataset, ref: xr.Dataset, t_c: float, n: int) -> float:
@@ -72,17 +69,17 @@ def measure(spec: dict, inputs) -> SimpleNamespace:
                                      m.ydot0) for x in m.mus_band]
     m.data = xr.Dataset(
         {
-            "rms": _v("eps", rms, "RMS difference ||y_eps - y_s|| on (0, t_c) (eq. L2-norm)"),
-            "n_impacts": _v("eps", nimp, "impacts of the lower mass in (0, t_c)"),
-            "local_slope_rms": _v("eps_mid", m.local, "local slope d log rms / d log eps"),
-            "recheck_eps": _v("recheck", np.array(recheck), "eps re-integrated on finer grids"),
-            "rms_same_grid": _v("recheck", m.grid_same, "rms re-integrated on the pipeline's grid"),
-            "rms_fine_grid": _v("recheck", m.grid_fine, "rms on the twice-finer grid"),
-            "rms_finer_grid": _v("recheck", m.grid_finer, "rms on the four-times-finer grid"),
+            "rms": variable("eps", rms, "RMS difference ||y_eps - y_s|| on (0, t_c) (eq. L2-norm)"),
+            "n_impacts": variable("eps", nimp, "impacts of the lower mass in (0, t_c)"),
+            "local_slope_rms": variable("eps_mid", m.local, "local slope d log rms / d log eps"),
+            "recheck_eps": variable("recheck", np.array(recheck), "eps re-integrated on finer grids"),
+            "rms_same_grid": variable("recheck", m.grid_same, "rms re-integrated on the pipeline's grid"),
+            "rms_fine_grid": variable("recheck", m.grid_fine, "rms on the twice-finer grid"),
+            "rms_finer_grid": variable("recheck", m.grid_finer, "rms on the four-times-finer grid"),
             "t_c_grid": (("gamma", "mu"), m.tc_grid, {"long_name": "duration of the eps = 0 sticky phase", "units": "1"}),
-            "band_mu": _v("band", np.array(m.mus_band), "mu at which the gamma band is computed"),
-            "band_gamma_lo": _v("band", np.array([e[0] for e in m.edges]), "smallest gamma with t_c >= 5.23"),
-            "band_gamma_hi": _v("band", np.array([e[1] for e in m.edges]), "gamma where t_c reaches 5.24"),
+            "band_mu": variable("band", np.array(m.mus_band), "mu at which the gamma band is computed"),
+            "band_gamma_lo": variable("band", np.array([e[0] for e in m.edges]), "smallest gamma with t_c >= 5.23"),
+            "band_gamma_hi": variable("band", np.array([e[1] for e in m.edges]), "gamma where t_c reaches 5.24"),
         },
         coords={"eps": ("eps", eps, {"long_name": "initial lower-mass speed eps (eq. sticky-ic)", "units": "1"}),
                 "eps_mid": ("eps_mid", np.sqrt(eps[1:] * eps[:-1]), {"long_name": "geometric midpoint of eps", "units": "1"}),

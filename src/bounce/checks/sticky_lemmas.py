@@ -38,13 +38,10 @@ from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import SQRT2, eps_star, sticky_duration_infimum, sticky_fundamental, sticky_onset
-from .base import BEYOND, PAPER, Check, Verdict, judge, recorded
+from .base import BEYOND, PAPER, Check, Verdict, judge, recorded, variable
 
 NAME = "sticky-lemmas"
 
-
-def _v(dims, values, long_name, units="1", **extra):
-    return (dims, np.asarray(values), {"long_name": long_name, "units": units, **extra})
 
 
 def onset(gamma: float, mu: float, alpha: float) -> Deviations:
@@ -358,33 +355,33 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
 
     data = xr.Dataset(
         {
-            "gamma": _v("pair", gam, "gamma"),
-            "mu": _v("pair", mus, "mu"),
-            "E_min_numerical": _v("pair", e_num_abs, "numerical minimum of E over sticky/grazing states"),
-            "E_min_formula": _v("pair", e_formula, "E_min of eq. min-sticky-energy"),
-            "E_min_grid": _v("pair", e_grid - gam**2 / 2, "grid minimum of E over sticky/grazing states"),
-            "ydot_min_numerical": _v("pair", yd_num, "numerical minimiser Ydot_s"),
-            "ydot_min_formula": _v("pair", yd_formula, "Ydot_s of eq. ydot-min-Esticky"),
-            "z_min_numerical": _v("pair", z_num, "numerical minimiser z = Y_s + 2 gamma - 1"),
-            "alpha": _v(("pair", "alpha_index"), alphas, "alpha_s = 4 gamma mu - Ydot_s"),
-            "duration": _v(("pair", "alpha_index"), durations, "sticky duration t_d - t_s (inf: never detaches)"),
-            "dissipated": _v(("pair", "alpha_index"), dissipated, "energy dissipated during the sticky phase"),
-            "duration_infimum": _v("pair", inf_bound, "pi/omega_s, own lower bound of the duration"),
-            "eps_star_bisection": _v("pair", eps_bis, "threshold eps* from the simulator (bisection)"),
-            "eps_star_closed_form": _v("pair", eps_cf, "threshold eps* from the own closed form"),
-            "construct_factor": _v("factor", factors, "alpha_s of the construction / alpha_s of the minimiser"),
-            "construct_gamma": _v("cpair", np.array([p[0] for p in c_pairs]), "gamma of the constructions"),
-            "construct_mu": _v("cpair", np.array([p[1] for p in c_pairs]), "mu of the constructions"),
-            "construct_excess": _v(("cpair", "factor", "contact"), c_excess,
+            "gamma": variable("pair", gam, "gamma"),
+            "mu": variable("pair", mus, "mu"),
+            "E_min_numerical": variable("pair", e_num_abs, "numerical minimum of E over sticky/grazing states"),
+            "E_min_formula": variable("pair", e_formula, "E_min of eq. min-sticky-energy"),
+            "E_min_grid": variable("pair", e_grid - gam**2 / 2, "grid minimum of E over sticky/grazing states"),
+            "ydot_min_numerical": variable("pair", yd_num, "numerical minimiser Ydot_s"),
+            "ydot_min_formula": variable("pair", yd_formula, "Ydot_s of eq. ydot-min-Esticky"),
+            "z_min_numerical": variable("pair", z_num, "numerical minimiser z = Y_s + 2 gamma - 1"),
+            "alpha": variable(("pair", "alpha_index"), alphas, "alpha_s = 4 gamma mu - Ydot_s"),
+            "duration": variable(("pair", "alpha_index"), durations, "sticky duration t_d - t_s (inf: never detaches)"),
+            "dissipated": variable(("pair", "alpha_index"), dissipated, "energy dissipated during the sticky phase"),
+            "duration_infimum": variable("pair", inf_bound, "pi/omega_s, own lower bound of the duration"),
+            "eps_star_bisection": variable("pair", eps_bis, "threshold eps* from the simulator (bisection)"),
+            "eps_star_closed_form": variable("pair", eps_cf, "threshold eps* from the own closed form"),
+            "construct_factor": variable("factor", factors, "alpha_s of the construction / alpha_s of the minimiser"),
+            "construct_gamma": variable("cpair", np.array([p[0] for p in c_pairs]), "gamma of the constructions"),
+            "construct_mu": variable("cpair", np.array([p[1] for p in c_pairs]), "mu of the constructions"),
+            "construct_excess": variable(("cpair", "factor", "contact"), c_excess,
                                    "(E - E_min)/gamma^2 at the constructed anomalous event"),
-            "construct_kind": _v(("cpair", "factor", "contact"), c_kind, "kind of the constructed event",
+            "construct_kind": variable(("cpair", "factor", "contact"), c_kind, "kind of the constructed event",
                                  flag_values=[0, 1, 2, 3], flag_meanings="impact grazing sticky_start detach"),
-            "expansion_zeta": _v("zeta", zeta, "time since the onset zeta"),
-            "expansion_residual": _v("zeta", R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
-            "family_eps": _v("family", np.array(eps_family), "eps of eq. sticky-ic"),
-            "family_sticky_count": _v("family", np.array(fam_counts), "sticky events up to the horizon"),
-            "family_bound": _v("family", np.array(bound), "energy bound on the number of sticky events"),
-            "mc_sticky_count": _v("sample", mc["counts"][:, STICKY_START], "sticky events per Monte-Carlo run"),
+            "expansion_zeta": variable("zeta", zeta, "time since the onset zeta"),
+            "expansion_residual": variable("zeta", R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
+            "family_eps": variable("family", np.array(eps_family), "eps of eq. sticky-ic"),
+            "family_sticky_count": variable("family", np.array(fam_counts), "sticky events up to the horizon"),
+            "family_bound": variable("family", np.array(bound), "energy bound on the number of sticky events"),
+            "mc_sticky_count": variable("sample", mc["counts"][:, STICKY_START], "sticky events per Monte-Carlo run"),
         },
         coords={"contact": ("contact", np.array(["sticky", "grazing"], dtype=object),
                             {"long_name": "constructed contact type", "units": "1"})},
