@@ -62,12 +62,14 @@ from .events import (
     compensated_add,
 )
 from .flight import EPS, FOUND, HORIZON
-from .power_flight import AT_REST, HANDOVER, first_contact, short_flight
+from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, first_contact, short_flight
 from .power_series import DEGREE_LONG, L_AP1, L_GAMMA, L_XI_EQ, law_array
 
 #: the sticky phase of the nonlinear spring is not integrated: the loop stops at its onset
 STOP_STICKY_UNSUPPORTED = len(STOP_NAMES)
-POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported",)
+#: a crossing of the rest length xi = 0 too slow to be computed to rounding (power_flight docstring)
+STOP_SLOW_CROSSING = STOP_STICKY_UNSUPPORTED + 1
+POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported", "slow_crossing")
 
 
 @njit(cache=True)
@@ -134,6 +136,9 @@ def run_power_events(
                         out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
                 n += 1
                 stop = STOP_STICKY_UNSUPPORTED
+                break
+            if status == SLOW_CROSSING:
+                stop = STOP_SLOW_CROSSING
                 break
             if status != FOUND:
                 stop = STOP_TIME if status == HORIZON else STOP_FAILED
