@@ -263,8 +263,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
                 # linear damping solved exactly in the window: xi' = v exp(-2 mu s)
                 arg = 2.0 * mu * d / v
-                if not arg < 0.5:
-                    return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+                if not arg < 0.5:  # the damping stops xi' before the window's end: a creeping spring
+                    return SLOW_CROSSING, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
                 T = -math.log1p(-arg) / (2.0 * mu)
                 dv = v * math.expm1(-2.0 * mu * T)
             else:
