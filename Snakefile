@@ -48,6 +48,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/methods.smk"
 include: "workflow/rules/docs.smk"
+include: "workflow/rules/sweeps.smk"
 
 
 rule all:
@@ -59,4 +60,5 @@ rule all:
         "results/report/validation.md",
         "results/report/validation.html",
         [f"results/methods/{name}.nc" for name in STUDIES],
+        sweep_files(),
     default_target: True

@@ -87,7 +87,8 @@ def test_contract(name):
 ])
 def test_failure_is_reported_not_raised(name, setting):
     module = METHODS[name][0]
-    r = module.run(P, DROP, setting, max_events=500)
+    # LSODA's stall (test_scipy_lsoda_stall_and_budget) starts after ~480 impacts on some CPUs: room for it
+    r = module.run(P, DROP, setting, max_events=2000 if setting.get("solver") == "LSODA" else 500)
     assert r.failure in FAILURES[1:] and 0 <= r.failure_index <= r.t.size
     assert r.t.size == r.xdot.size
 

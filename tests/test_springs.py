@@ -7,6 +7,8 @@ law, unknown parameter, a law the exact solver does not support) as one-line Inp
 
 import math
 
+import numpy as np
+
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -67,5 +69,35 @@ def test_exact_solver_refuses_other_laws():
         def xi_eq(self, gamma):
             return -gamma ** (1 / 3)
 
-    with pytest.raises(InputError, match="supports the spring laws"):
+    with pytest.raises(InputError, match="spring law must be one of"):
         simulate(Parameters(0.01, 0.01, Cubic()), State.from_psi_xi(1.0, 0.0, 0.0, 0.0), max_events=3)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--spring", "power", "--rho", "1", "--a", "0.5"], "--spring power needs --b"),
+    (["--spring", "power", "--rho", "-1", "--a", "0.5", "--b", "0.5"], "rho must be > 0"),
+    (["--spring", "power", "--rho", "1", "--a", "-0.5", "--b", "0.5"], "a must be >= 0"),
+    (["--rho", "2"], "only with --spring power"),
+])
+def test_cli_refuses_bad_law_with_one_line_and_no_file(tmp_path, capsys, args, words):
+    from bounce.cli import main
+
+    out = tmp_path / "run.nc"
+    status = main(["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "1", "--psidot0", "0", "--xi0", "0",
+                   "--xidot0", "0", "--events", "10", *args, "--out", str(out)])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and words in err and len(err.splitlines()) == 1
+    assert not out.exists()
+
+
+def test_power_law_runs_through_simulate_and_netcdf(tmp_path):
+    """The power law goes through the same front (simulate) and file format; its law is in the attributes."""
+    from bounce.springs import spring_from_spec
+
+    p = Parameters(0.01, 0.01, spring_from_spec({"law": "power", "rho": 1.0, "a": 0.5, "b": 0.5}))
+    traj = simulate(p, State.from_psi_xi(1.0, 0.0, p.xi_eq, 0.0), max_events=200)
+    assert len(traj) == 200 and set(traj.kind_names) == {"impact"}
+    assert traj.params.spring.name == "power" and np.all(np.diff(traj.t) > 0)
+    ds = to_dataset(traj)
+    assert (ds.attrs["spring_law"], ds.attrs["spring_a"]) == ("power", 0.5)
+    assert from_dataset(ds).params == p

@@ -34,15 +34,16 @@ import math
 import os
 import signal
 import sys
-from collections import Counter
 
 import numpy as np
 
 from . import __version__
 from .events import KIND_NAMES
-from .io import check_output_path, to_dataset, write_netcdf
+from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import InputError, Parameters, State, check_physical, check_supported
 from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
+from .springs import spring_from_spec
+from .stream import DEFAULT_CHUNK, check_memory, progress_enabled, simulate_chunked, stream_to_netcdf
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -140,6 +141,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="g m / (2 L k), > 0")
     p.add_argument("--mu", required=True, type=_number("[0, inf)"),
                    help="damping nu / sqrt(2 k m), >= 0")
+    sp = p.add_argument_group("spring law (paper's Discussion, eq. eq-motion-nonlin-psi-xi: "
+                              "xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b; linear: rho = 1, a = b = 0)")
+    sp.add_argument("--spring", choices=("linear", "power"), default="linear",
+                    help="linear (default, closed-form flights) or power (Taylor-series flights)")
+    sp.add_argument("--rho", type=_ANY, help="stiffness of the power law, > 0 (with --spring power)")
+    sp.add_argument("--a", type=_ANY, help="exponent of the restoring force, >= 0 (Hertz: 0.5)")
+    sp.add_argument("--b", type=_ANY, help="exponent of the damping, >= 0 (Hertz: 0.5)")
     xy = p.add_argument_group("initial state, heights and velocities")
     xy.add_argument("--x0", type=_number("[0, inf)"), help="height of the lower mass, >= 0")
     xy.add_argument("--xdot0", type=_ANY, help="velocity of the lower mass (>= 0 if x0 = 0)")
@@ -159,10 +167,40 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt-sample", dest="dt_sample", type=_number("(0, inf)", lambda v: v > 0),
                    help="also sample x, y and velocities on [0, t_valid] with this step")
     p.add_argument("--out", required=True, metavar="FILE.nc", help="output netCDF file (its directory must exist)")
+    run = p.add_argument_group("long runs and output")
+    run.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                     help="progress bar on stderr (default: when stderr is a terminal)")
+    run.add_argument("--stream", action="store_true",
+                     help="bounded memory: simulate in chunks and append each to FILE.nc.partial, "
+                          "moved to FILE.nc at the end (for runs longer than memory)")
+    run.add_argument("--resume", action="store_true",
+                     help="continue the interrupted --stream run of FILE.nc.partial (same arguments)")
+    run.add_argument("--chunk", type=_count, default=DEFAULT_CHUNK,
+                     help=f"events per chunk with --stream or --progress (default {DEFAULT_CHUNK})")
+    run.add_argument("--keep-first", dest="keep_first", type=_count,
+                     help="with --stream: keep only the first N events and --keep-log log-spaced ones after them")
+    run.add_argument("--keep-log", dest="keep_log", type=_count, help="see --keep-first (>= 2)")
+    run.add_argument("--compression", choices=sorted(CODECS), default="none",
+                     help="codec of the event records (default none: the fastest; zlib: ~2.2x smaller, "
+                          "~15x slower to write; ncdump reads both; zstd: ~1.3x smaller, ~4x slower, needs the HDF5 zstd filter to read)")
     return parser
 
 
 # --------------------------------------------------------------------------- helpers
+
+def _spring(args):
+    """The law of --spring/--rho/--a/--b (bounce.springs): every parameter of the power law is required."""
+    law_params = {k: getattr(args, k) for k in ("rho", "a", "b")}
+    if args.spring == "linear":
+        given = [f"--{k}" for k, v in law_params.items() if v is not None]
+        if given:
+            raise UsageError(f"{' '.join(given)}: only with --spring power (the linear spring has rho = 1, a = b = 0)")
+        return spring_from_spec(None)
+    missing = [f"--{k}" for k, v in law_params.items() if v is None]
+    if missing:
+        raise UsageError(f"--spring power needs {' '.join(missing)} (rho > 0, a >= 0, b >= 0; Hertz: a = b = 0.5)")
+    return spring_from_spec({"law": "power", **law_params})
+
 
 def _initial_state(args) -> State:
     given_xy = [n for n in XY_FORM if getattr(args, n) is not None]
@@ -220,17 +258,40 @@ def _sample_times(traj, t_max: float, dt: float) -> np.ndarray:
     return times[times <= end]
 
 
-def _summary(traj, path, n_samples) -> str:
-    counts = Counter(traj.kind_names)
-    parts = ", ".join(f"{counts[k]} {k}" for k in KIND_NAMES if counts[k])
-    text = f"bounce: {len(traj)} events ({parts or 'none'}), stop: {traj.stop_reason}, t_end = {traj.t_end:.10g}"
+def _summary(n_events: int, counts, stop_reason: str, t_end: float, path, n_samples=None) -> str:
+    """One line; ``counts`` per kind (np.bincount of the kinds: no loop over events)."""
+    parts = ", ".join(f"{c} {k}" for k, c in zip(KIND_NAMES, counts) if c)
+    text = f"bounce: {n_events} events ({parts or 'none'}), stop: {stop_reason}, t_end = {t_end:.10g}"
     if n_samples is not None:
         text += f", {n_samples} samples"
     return text + f"; wrote {path}"
 
 
+def _keep(args) -> dict | None:
+    if (args.keep_first is None) != (args.keep_log is None):
+        raise UsageError("--keep-first and --keep-log go together")
+    if args.keep_first is None:
+        return None
+    if not args.stream:
+        raise UsageError("--keep-first/--keep-log thin a --stream run; add --stream")
+    if args.keep_log < 2:
+        raise UsageError(f"--keep-log must be an integer >= 2 (allowed range: [2, inf)), got {args.keep_log}")
+    return {"first": args.keep_first, "log_samples": args.keep_log}
+
+
+def _stream_command(args, params, initial, out) -> int:
+    if args.dt_sample is not None:
+        raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
+    result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
+                              _keep(args), args.resume, args.progress, args.compression)
+    counts = [result["counts"][k] for k in KIND_NAMES]
+    print(_summary(result["events"], counts, result["stop_reason"], result["t_end"], out)
+          + f" ({result['records']} records)")
+    return EXIT_OK
+
+
 def _simulate_command(args) -> int:
-    params = Parameters(args.gamma, args.mu)
+    params = Parameters(args.gamma, args.mu, _spring(args))
     initial = _initial_state(args)
     check_supported(params, initial.deviations(params))
     try:
@@ -239,14 +300,29 @@ def _simulate_command(args) -> int:
         raise UsageError(
             f"--out must be a new file or a regular file in an existing, writable directory: {exc}"
         ) from None
+    chunked = args.stream or args.resume or progress_enabled(args.progress)
+    if chunked and params.spring.name != "linear":
+        raise UsageError("--stream, --resume and --progress run the linear spring's event loop in chunks; "
+                         f"the {params.spring.name} spring runs in one call (drop them)")
+    if args.stream or args.resume:
+        if args.resume and not args.stream:
+            raise UsageError("--resume continues a --stream run; add --stream")
+        return _stream_command(args, params, initial, out)
+    _keep(args)
+    check_memory(args.events)  # refuse up front what would meet the OOM killer
     if args.dt_sample is not None:
         # fail before simulating: the sampled span is [0, t_max], or at least [0, first event]
         first = simulate(params, initial, max_events=1, t_max=args.t_max, energy_stop=args.energy_stop)
         _n_samples(args.t_max if math.isfinite(args.t_max) else _sample_end(first, args.t_max), args.dt_sample)
-    traj = simulate(params, initial, max_events=args.events, t_max=args.t_max, energy_stop=args.energy_stop)
+    stop = {"max_events": args.events, "t_max": args.t_max, "energy_stop": args.energy_stop}
+    if progress_enabled(args.progress):  # in chunks, to draw the bar (the same bits as one call)
+        traj = simulate_chunked(params, initial, chunk=args.chunk, progress=True, **stop)
+    else:
+        traj = simulate(params, initial, **stop)
     times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
-    write_netcdf(to_dataset(traj, times), out)
-    print(_summary(traj, out, None if times is None else len(times)))
+    write_netcdf(to_dataset(traj, times), out, compression=args.compression)
+    counts = np.bincount(traj.kind, minlength=len(KIND_NAMES))
+    print(_summary(len(traj), counts, traj.stop_reason, traj.t_end, out, None if times is None else len(times)))
     return EXIT_OK
 
 

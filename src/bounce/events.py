@@ -76,6 +76,12 @@ TANGENT_ACC = 2.0 * WINDOW_FACTOR**2  # (4 |x''| delta2)^2 = 32 |x''| xn
 TANGENT_JERK = 4.5 * WINDOW_FACTOR**3  # (4 |x'''| delta3^2/2)^3 = 288 |x'''| xn^2
 STICKY_ONSET = 6.0 * WINDOW_FACTOR**3  # (4 |x'''| delta3)^3 = 384 x'''^2 xn
 
+# slots of the loop state carried between chunks (run_events' ``carry``): the state after the last
+# event, the compensated time (hi, lo), the pending lift-off delay, whether the lower mass rests on
+# the floor, and whether the array holds a state to resume from
+C_X, C_U, C_A, C_ETA, C_T_HI, C_T_LO, C_T_START, C_STICKY, C_RESUME = range(9)
+CARRY_SIZE = 9
+
 
 @njit(cache=True)
 def energy_excess(x, u, a, eta, gamma):
@@ -215,7 +221,7 @@ def contact_window(scale: float, acc: float, jerk: float) -> tuple[float, float,
 def run_events(
     x0, u, a, eta, gamma, params, coefs, sparams, scoefs,
     max_events, t_max, e_stop,
-    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind,
+    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind, carry=None,
 ):
     """Advance the state (x0, u, a, eta) from t = 0 and record every event.
 
@@ -224,6 +230,11 @@ def run_events(
     receive per event: t, the duration of the phase ending at it, the state just
     after it (u = xdot, a = xi', eta = xi + gamma), E - E_m and the kind.
     Returns ``(n_events, stop_reason, t_end)``.
+
+    ``carry`` (optional, float64[CARRY_SIZE]) chains calls: on return it holds the
+    loop's whole state (slots ``C_*``); passed again with ``carry[C_RESUME] = 1`` the
+    loop resumes from it (x0, u, a, eta are then ignored), so N calls of n events
+    give the bits of one call of N n events (t_max is measured from t = 0).
     """
     mu = params[P_MU]
     rho = params[P_RHO]
@@ -234,7 +245,11 @@ def run_events(
     sticky = False
     t_start = 0.0
     stop = STOP_EVENTS
-    if x0 == 0.0 and u == 0.0:
+    if carry is not None and carry[C_RESUME] != 0.0:
+        x0, u, a, eta = carry[C_X], carry[C_U], carry[C_A], carry[C_ETA]
+        t_hi, t_lo, t_start = carry[C_T_HI], carry[C_T_LO], carry[C_T_START]
+        sticky = carry[C_STICKY] != 0.0
+    elif x0 == 0.0 and u == 0.0:
         if _at_rest_is_sticky(a, eta, gamma, mu):
             sticky = True
             _record(0, 0.0, 0.0, STICKY_START, u, a, eta, gamma,
@@ -303,4 +318,9 @@ def run_events(
         if out_e[n - 1] < e_stop:
             stop = STOP_ENERGY
             break
+    if carry is not None:
+        carry[C_X], carry[C_U], carry[C_A], carry[C_ETA] = x0, u, a, eta
+        carry[C_T_HI], carry[C_T_LO], carry[C_T_START] = t_hi, t_lo, t_start
+        carry[C_STICKY] = 1.0 if sticky else 0.0
+        carry[C_RESUME] = 1.0
     return n, stop, t_hi + t_lo

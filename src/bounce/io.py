@@ -68,7 +68,18 @@ UNITS_COMMENT = (
     "times in units of sqrt(m/2k), velocities in L/sqrt(m/2k), energies in 2kL^2 "
     "(gamma = g m/(2 L k), mu = nu/sqrt(2 k m))."
 )
-COMPRESSION = {"zlib": True, "complevel": 4, "shuffle": True}
+#: codecs of :func:`write_netcdf` (netCDF4 encodings), measured by ``benchmarks/bench_cli.py --compression``
+#: at 2e6 events (162 MB of float64): zlib level 4 + shuffle 75 MB at ~2,700 ns/event of CPU, zstd level 1 +
+#: shuffle 127 MB at ~700 ns/event, none 162 MB at ~160 ns/event.  The event states are float64 with
+#: full mantissas: no codec gains more than 2.2x.  "zlib" (the pipeline's default: small, thinned files)
+#: and "none" (the CLI's default: keeps up with the solver) are read by every netCDF-4 reader (ncdump
+#: included); "zstd" needs netCDF-C >= 4.9 with the HDF5 zstd filter plugin installed (Debian 12's ncdump cannot read it).
+CODECS = {
+    "zlib": {"zlib": True, "complevel": 4, "shuffle": True},
+    "zstd": {"compression": "zstd", "complevel": 1, "shuffle": True},
+    "none": {},
+}
+COMPRESSION = CODECS["zlib"]
 
 # name -> (long_name, comment or None) of the per-event variables
 EVENT_VARIABLES = {
@@ -324,6 +335,19 @@ def from_dataset(ds: xr.Dataset) -> Trajectory:
     return _trajectory(ds)
 
 
+def split_timings(ds: xr.Dataset) -> tuple[xr.Dataset, xr.Dataset]:
+    """``(result, timings)``: the variables measured in seconds (CPU or wall time) go to ``timings``.
+
+    Results must be byte-identical across reruns; timings never are.  The pipeline writes the two to
+    separate files (``results/methods/<study>.nc`` and ``results/timing/methods/<study>-cpu.nc``).
+    """
+    timed = [name for name, var in ds.data_vars.items() if var.attrs.get("units") == "s"]
+    timings = ds[timed]
+    timings.attrs = {"title": f"timings of: {ds.attrs.get('title', '')}", "Conventions": "CF-1.10",
+                     "comment": "CPU (process) or wall seconds on a shared machine: not reproducible by design"}
+    return ds.drop_vars(timed), timings
+
+
 def read_dataset(path) -> xr.Dataset:
     """Open a bounce netCDF file, load it into memory and close it."""
     with xr.open_dataset(path, engine="netcdf4") as ds:
@@ -462,19 +486,20 @@ def _disk_full(directory: Path, exc: BaseException) -> bool:
         return False
 
 
-def _encoding(ds: xr.Dataset) -> dict:
-    """float64 (or int8 flags) with zlib compression, no fill values."""
+def _encoding(ds: xr.Dataset, compression: str = "zlib") -> dict:
+    """float64 (or int8 flags) with the codec ``compression`` of :data:`CODECS`, no fill values."""
+    codec = CODECS[compression]
     encoding = {}
     for name, var in ds.variables.items():
         if np.issubdtype(var.dtype, np.floating):
-            encoding[name] = {"dtype": "float64", "_FillValue": None, **COMPRESSION}
+            encoding[name] = {"dtype": "float64", "_FillValue": None, **codec}
         elif np.issubdtype(var.dtype, np.integer):
-            encoding[name] = {"dtype": var.dtype.name, "_FillValue": None, **COMPRESSION}
+            encoding[name] = {"dtype": var.dtype.name, "_FillValue": None, **codec}
     return encoding
 
 
-def write_netcdf(ds: xr.Dataset, path) -> Path:
-    """Write ``ds`` to ``path`` atomically (netCDF4/HDF5, float64, zlib); return the path.
+def write_netcdf(ds: xr.Dataset, path, compression: str = "zlib") -> Path:
+    """Write ``ds`` to ``path`` atomically (netCDF4/HDF5, float64, codec ``compression``); return the path.
 
     The file is written to a temporary file ``.NAME.<pid>.<hex>.bounce-tmp`` in
     the same directory, flushed to disk and moved into place with
@@ -491,7 +516,7 @@ def write_netcdf(ds: xr.Dataset, path) -> Path:
     tmp = path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{_TMP_SUFFIX}"
     try:
         ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4",
-                     encoding=_encoding(ds), unlimited_dims=())
+                     encoding=_encoding(ds, compression), unlimited_dims=())
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp, path)

@@ -80,7 +80,15 @@ def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid)
 
 
 def sample_trajectory(traj, times):
-    """:func:`sample` for a :class:`bounce.simulate.Trajectory`."""
+    """:func:`sample` for a :class:`bounce.simulate.Trajectory` of the linear spring (closed forms).
+
+    The power-law spring has no closed-form flight: its dense output is not written yet, and it is
+    refused here rather than sampled with the linear formulas.
+    """
+    if traj.params.spring.name != "linear":
+        from .model import InputError
+
+        raise InputError(f"dense sampling (--dt-sample) supports the linear spring only, got {traj.params.spring.name!r}")
     return sample(
         traj.params.gamma, traj.params.mu, traj.initial.deviations(traj.params), traj.t, traj.kind,
         traj.xdot, traj.xidot, traj.eta, times, traj.t_valid,

@@ -26,6 +26,8 @@ MAX_EVENTS = 10**10
 
 #: spring laws (bounce.springs) the closed-form flights of bounce.flight solve
 EXACT_LAWS = ("linear",)
+#: spring laws solved by the Taylor-series flights of bounce.power_flight (exact to rounding too)
+SERIES_LAWS = ("power",)
 
 
 @dataclass(frozen=True)
@@ -103,11 +105,18 @@ def simulate(
     """Simulate from ``initial`` (a State, or Deviations for states near equilibrium) until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
 
     Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
-    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`).
+    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`); for the
+    power-law spring (``params.spring``), Taylor-series flights with rigorous tails
+    (:mod:`bounce.power_events`; its sticky phase is not integrated yet: the run stops at a sticky
+    onset with stop reason ``sticky_unsupported``).
     """
+    if params.spring.name in SERIES_LAWS:  # no closed form: Taylor-series flights (bounce.power_events)
+        from .power_events import simulate_power
+
+        return simulate_power(params, params.spring, initial, max_events, t_max, energy_stop)
     if params.spring.name not in EXACT_LAWS:
         raise InputError(
-            f"the closed-form exact solver supports the spring laws {EXACT_LAWS}, got {params.spring.name!r}"
+            f"spring law must be one of {EXACT_LAWS + SERIES_LAWS}, got {params.spring.name!r}"
         )
     max_events = _positive_int("events", max_events, MAX_EVENTS)
     t_max = float(t_max)

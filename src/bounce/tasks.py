@@ -62,13 +62,57 @@ def _report(args) -> None:
 
 
 def _study(args) -> None:
-    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset and its figure."""
+    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset, its timings, its figure.
+
+    ``--out NC TIMING_NC PNG PDF``: the CPU times go to TIMING_NC so that NC is byte-reproducible.
+    """
+    from .io import split_timings
     from .studies import STUDIES
 
     build, plot = STUDIES[args.name].functions()
     ds = build(args.spec)
+    result, timings = split_timings(ds)
+    write_netcdf(result, args.out[0])
+    write_netcdf(timings, args.out[1])
+    plot(ds, args.spec, args.out[2:])
+
+
+def _readme(args) -> None:
+    """Rewrite the README's generated block from the outputs under ``--inputs`` (the results folder)."""
+    from .io import git_info
+    from .readme import block, update
+
+    update(Path(args.out[0]), block(Path(args.inputs[0]), git_info()[0]))
+
+
+def _sweep_shard(args) -> None:
+    """One shard of a sweep (``--shard K``) on ``--workers`` processes."""
+    from .sweeps import registry
+    from .sweeps.base import run_shard
+
+    import time
+
+    start = time.perf_counter()
+    ds = run_shard(registry()[args.name], args.spec, args.shard, args.workers)
     write_netcdf(ds, args.out[0])
-    plot(ds, args.spec, args.out[1:])
+    seconds = time.perf_counter() - start
+    print(f"{args.name} shard {args.shard}: {ds.sizes['item']} items in {seconds:.1f} s on {args.workers} "
+          f"workers ({ds.sizes['item'] / seconds / args.workers:.3g} items/s/core, start-up included)", file=sys.stderr)
+
+
+def _sweep_gather(args) -> None:
+    """Every shard of a sweep -> its dataset."""
+    from .sweeps import registry
+    from .sweeps.base import gather
+
+    write_netcdf(gather(registry()[args.name], args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
+
+
+def _sweep_figure(args) -> None:
+    """A sweep's figure, from its gathered dataset alone."""
+    from .sweeps import registry
+
+    registry()[args.name].plot(read_dataset(args.inputs[0]), args.spec, args.out)
 
 
 def _thumbnails(args) -> None:
@@ -87,6 +131,10 @@ TASKS = {
     "report": _report,
     "study": _study,
     "thumbnails": _thumbnails,
+    "readme": _readme,
+    "sweep-shard": _sweep_shard,
+    "sweep-gather": _sweep_gather,
+    "sweep-figure": _sweep_figure,
 }
 
 
@@ -97,10 +145,12 @@ def main(argv=None) -> int:
     parser.add_argument("--spec", type=json.loads, default={}, help="the config slice, as JSON")
     parser.add_argument("--inputs", nargs="*", default=[], help="input netCDF files")
     parser.add_argument("--out", nargs="+", required=True, help="output file(s)")
+    parser.add_argument("--shard", type=int, default=0, help="sweep shard index (0-based)")
+    parser.add_argument("--workers", type=int, default=1, help="worker processes (the job's cores)")
     args = parser.parse_args(argv)
     TASKS[args.task](args)
     return 0
 
 
-if __name__ == "__main__":
+if __name__ == "__main__":  # the guard also keeps spawned sweep workers from re-running the task
     sys.exit(main())

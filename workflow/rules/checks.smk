@@ -25,6 +25,8 @@ rule check:
         spec=lambda w: as_json(config["checks"][w.name]),
     log:
         "results/logs/checks/{name}.log",
+    benchmark:
+        "results/timing/checks/{name}.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in CHECKS),
     shell:
@@ -45,6 +47,8 @@ rule report:
         spec=as_json(config["report"]),
     log:
         "results/logs/report.log",
+    benchmark:
+        "results/timing/report.tsv"
     shell:
         "python -m bounce.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.html} "
         "> {log} 2>&1"

@@ -1,6 +1,7 @@
-"""Stage 4 (on demand, not in `all`): README thumbnails, committed under docs/thumbnails/.
+"""On demand, not in `all`: what the README shows, from a full run's outputs.
 
-    snakemake --cores 2 thumbnails
+    snakemake --cores 2 thumbnails     # docs/thumbnails/ (committed)
+    snakemake --cores 2 readme         # the README's generated block of numbers
 """
 
 
@@ -14,3 +15,18 @@ rule thumbnails:
         "results/logs/docs/thumbnails.log",
     shell:
         "python -m bounce.tasks thumbnails --inputs {input} --out {output} > {log} 2>&1"
+
+
+rule readme:
+    """Rewrite the README's generated block (<!-- numbers:begin/end -->) from this run's outputs: validation
+    counts per kind, pipeline and job timings, the predictability horizon, work-precision, solver speed."""
+    input:
+        [f"results/checks/{name}.nc" for name in CHECKS],
+        "results/methods/horizon.nc",
+        "results/methods/work-precision.nc",
+    output:
+        touch("results/timing/readme.done"),
+    log:
+        "results/logs/docs/readme.log",
+    shell:
+        "python -m bounce.tasks readme --inputs results --out README.md > {log} 2>&1"

@@ -12,6 +12,8 @@ rule figure:
         spec=lambda w: as_json(FIGURES[w.name][1]),
     log:
         "results/logs/figures/{name}.log",
+    benchmark:
+        "results/timing/figures/{name}.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in FIGURES),
     shell:

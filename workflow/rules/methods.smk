@@ -5,14 +5,17 @@ rule study:
     """One study of bounce.methods (predictability horizon, contact switch, reduced models, least model)."""
     output:
         nc="results/methods/{name}.nc",
+        timing="results/timing/methods/{name}-cpu.nc",
         png=report("results/methods/fig-{name}.png", caption="../report/study.rst", category="Speed against accuracy"),
         pdf="results/methods/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(STUDIES[w.name]),
     log:
         "results/logs/methods/{name}.log",
+    benchmark:
+        "results/timing/methods/{name}.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in STUDIES),
     shell:
         "python -m bounce.tasks study --name {wildcards.name} --spec {params.spec:q} "
-        "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
+        "--out {output.nc} {output.timing} {output.png} {output.pdf} > {log} 2>&1"

@@ -9,6 +9,8 @@ rule simulate:
         spec=lambda w: as_json(config["scenes"][w.scene]),
     log:
         "results/logs/simulate/{scene}.log",
+    benchmark:
+        "results/timing/simulate/{scene}.tsv"
     wildcard_constraints:
         scene="|".join(re.escape(s) for s in SCENES),
     shell:

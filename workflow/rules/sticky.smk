@@ -10,6 +10,8 @@ rule sticky_run:
         spec=sticky_run_spec,
     log:
         "results/logs/sticky/eps{eps}.log",
+    benchmark:
+        "results/timing/sticky/eps{eps}.tsv"
     shell:
         "python -m bounce.tasks scene --name sticky-eps{wildcards.eps} --spec {params.spec:q} --out {output} > {log} 2>&1"
 
@@ -24,6 +26,8 @@ rule sticky_convergence:
         spec=as_json({"samples": STICKY["samples"]}),
     log:
         "results/logs/sticky/convergence.log",
+    benchmark:
+        "results/timing/sticky/convergence.tsv"
     shell:
         "python -m bounce.tasks sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
 
@@ -36,5 +40,7 @@ rule sticky_inference:
         spec=as_json({k: STICKY[k] for k in ("gamma", "mu", "ydot0", "t_c_paper", "inference")}),
     log:
         "results/logs/sticky/inference.log",
+    benchmark:
+        "results/timing/sticky/inference.tsv"
     shell:
         "python -m bounce.tasks sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"

@@ -56,7 +56,6 @@ exactly in the core's variables).
 from __future__ import annotations
 
 import math
-import time
 from functools import cached_property
 from types import SimpleNamespace
 
@@ -406,7 +405,6 @@ claim(CLAIMS, "atlas-exponent-map", BEYOND, SUBJECT)(_atlas_exponent_claim(False
 
 def _dataset(m: Measurements, spec: dict) -> xr.Dataset:
     """The fitted numbers, the plotted series and the atlas, for the figure."""
-    t_start = time.perf_counter()
     n_scene, nq, kp = len(m.scenes), len(QUANTITIES), int(spec["plot_points"])
     keys = ("limit", "limit_err", "rms", "n_lo", "n_hi", "exponent", "exponent_err", "exponent_theory")
     sc_arr = {key: np.full((n_scene, nq), np.nan) for key in keys + ("transient",)}
@@ -462,7 +460,6 @@ def _dataset(m: Measurements, spec: dict) -> xr.Dataset:
         data.attrs["atlas_psi0"] = float(spec["atlas"]["psi0"])
         data.attrs["atlas_events"] = int(spec["atlas"]["events"])
     data.attrs["check"] = NAME
-    data.attrs["runtime_s"] = round(time.perf_counter() - t_start, 2)
     return data
 
 

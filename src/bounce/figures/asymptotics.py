@@ -4,32 +4,54 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import WIDTH, plt, save
+from .common import WIDTH, plt, save, tex_num
 
 
 def _regime(ds):
-    return r"$\gamma=%g$, $\mu=%g$" % (ds.attrs["gamma"], ds.attrs["mu"])
+    return r"$\gamma=%s$, $\mu=%s$" % (tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"]))
 
 
 def energy_decay(datasets, spec, outputs) -> None:
-    """E - E_m (eqs. tot-mech-energy, Emin) against the time since the first impact and against n."""
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.9))
-    for i, ds in enumerate(datasets):
+    """E - E_m (eqs. tot-mech-energy, Emin) against time (linear: the decay is exponential in t), one
+    panel per regime, and against the impact index n (log-log), both damping regimes.
+
+    The guides are the rate of check static-equilibrium (beyond the paper): E - E_m ~ e^{-kappa t},
+    kappa = min(2 mu/3, 2 lam), lam the slow rate of the sticky oscillator (eq. y-eq-sticky);
+    with t_n ~ (3/mu) ln n (Theorem main_thm) this is E - E_m ~ n^{-3 kappa/mu}, the slope
+    expected in the last panel, which prints the slope fitted on the last two decades of n.
+    """
+    from ..theory import equilibrium_rates
+
+    fig, axes = plt.subplots(1, len(datasets) + 1, figsize=(WIDTH, 2.9))
+    a_n = axes[-1]
+    for i, (ax, ds) in enumerate(zip(axes, datasets)):
         e = ds["energy_excess"].values
         n = ds["event"].values + 1
-        t = ds["t"].values
-        a1.loglog(t[1:] - t[0], e[1:], color=f"C{i}", label=_regime(ds))
-        a2.loglog(n, e, color=f"C{i}", label=_regime(ds))
+        t = ds["t"].values - ds["t"].values[0]
+        mu = float(ds.attrs["mu"])
+        kappa = equilibrium_rates(mu)["energy"]
+        ax.semilogy(t, e, color=f"C{i}", lw=1.0)
         late = n >= n[-1] / 100
+        t0, e0 = t[late][0], e[late][0]
+        ax.semilogy(t[late], e0 * np.exp(-kappa * (t[late] - t0)), "--", color="C3", lw=1.3,
+                    label=r"$\propto e^{-\kappa t}$, $\kappa=%.4g$" % kappa)
+        ax.set_xlabel(r"$t - t_1$  [$\sqrt{m/2k}$]")
+        ax.set_title("(%s) %s" % ("abc"[i], _regime(ds)), fontsize=8)
+        ax.set_ylim(top=30 * e.max())  # headroom for the legend
+        ax.legend(fontsize=6.5, loc="upper right")
         slope = np.polyfit(np.log(n[late]), np.log(e[late]), 1)[0]
-        a2.text(0.04, 0.06 + 0.1 * i, r"late slope %.2f" % slope, color=f"C{i}", transform=a2.transAxes, fontsize=7)
-    a1.set_xlabel(r"$t - t_1$ (time since the first impact)")
-    a1.set_ylabel(r"$E - E_m$")
-    a2.set_xlabel(r"impact index $n$")
-    a2.set_ylabel(r"$E - E_m$")
-    a1.legend(fontsize=7)
-    fig.suptitle("Energy decay towards the equilibrium energy $E_m=-\\gamma^2/2$ (Theorem static-equilibrium)")
-    fig.tight_layout()
+        a_n.loglog(n, e, color=f"C{i}", label=r"$\mu=%s$: slope $%.2f$, expected $-3\kappa/\mu=%.2f$"
+                   % (tex_num(mu), slope, -3 * kappa / mu))
+    axes[0].set_ylabel(r"$E - E_m$")
+    a_n.set_xlabel(r"impact index $n$")
+    a_n.set_title("(%s) both, against $n$; slopes fitted\nfor $n\\geq n_{max}/100$" % "abc"[len(datasets)], fontsize=7)
+    fig.legend(*a_n.get_legend_handles_labels(), loc="lower right", fontsize=6.5, frameon=False, ncol=2,
+               title="(c), slope of $\\ln(E-E_m)$ against $\\ln n$:", title_fontsize=6.5)
+    fig.suptitle(r"Energy decay to $E_m=-\gamma^2/2$ (Theorem static-equilibrium; rates beyond the paper): "
+                 r"$E-E_m\sim e^{-\kappa t}$," "\n"
+                 r"$\kappa=\min(2\mu/3,\,2\lambda)$, $\lambda$ the slow decay rate of eq. y-eq-sticky; "
+                 r"$t_n\sim(3/\mu)\ln n$ makes it $n^{-3\kappa/\mu}$", fontsize=8)
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
     save(fig, outputs)
 
 

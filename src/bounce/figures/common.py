@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-import tempfile
+import uuid
 from pathlib import Path
 
 import matplotlib
@@ -35,12 +35,14 @@ PDF_METADATA = {"CreationDate": None, "ModDate": None, "Producer": "bounce / mat
 
 
 def save(fig, outputs) -> None:
-    """Save ``fig`` to every path in ``outputs`` (format from the suffix), each atomically."""
+    """Save ``fig`` to every path in ``outputs`` (format from the suffix), each atomically.
+
+    The temporary file is created by matplotlib like any other file (mode 0666 less the umask,
+    as the netCDF files), not by ``mkstemp`` (0600), so figures are readable like the rest."""
     for out in outputs:
         out = Path(out)
         out.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=out.suffix)
-        os.close(fd)
+        tmp = out.parent / f".{out.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{out.suffix}"
         try:
             meta = PDF_METADATA if out.suffix == ".pdf" else {"Software": "bounce / matplotlib"}
             fig.savefig(tmp, metadata=meta, bbox_inches="tight")
@@ -49,6 +51,20 @@ def save(fig, outputs) -> None:
             Path(tmp).unlink(missing_ok=True)
             raise
     plt.close(fig)
+
+
+def tex_num(x, digits: int = 3) -> str:
+    """``x`` for mathtext (inside ``$...$``), the one number format of every figure text:
+    0.01 -> ``0.01``, 1e-05 -> ``10^{-5}``, 2.5e-05 -> ``2.5\\times10^{-5}``, 3e+05 -> ``3\\times10^{5}``
+    (``%g`` would print "1e-05", which mathtext renders as "1e - 05")."""
+    s = f"{float(x):.{digits}g}"
+    if "e" not in s:
+        return s
+    mantissa, exponent = s.split("e")
+    power = f"10^{{{int(exponent)}}}"
+    if mantissa in ("1", "-1"):
+        return mantissa[:-1] + power
+    return f"{mantissa}\\times{power}"
 
 
 def label_time(ax) -> None:

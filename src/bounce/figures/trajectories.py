@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..io import sample_dataset
-from .common import WIDTH, label_time, plt, save
+from .common import WIDTH, label_time, plt, save, tex_num
 
 IMPACT = 0
 
@@ -35,8 +35,8 @@ def rigid_fall(ds, spec, outputs) -> None:
     label_time(ax)
     ax.set_ylabel(r"height  [$L$]")
     ax.set_xlim(t0, t1)
-    ax.set_title(r"Fig. rigid-fall: $\gamma=\mu=%g$, $\psi(0)=%g$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
-                 % (ds.attrs["gamma"], ds.attrs["x0"]))
+    ax.set_title(r"Fig. rigid-fall: $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
+                 % (tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"]), tex_num(ds.attrs["x0"])))
     ax.legend(loc="upper center", ncol=3, bbox_to_anchor=(0.5, -0.16), frameon=False)
     inset = spec.get("inset")
     if inset:
@@ -51,34 +51,63 @@ def rigid_fall(ds, spec, outputs) -> None:
         ins.set_xlim(a, b)
         ins.set_ylim(c, d)
         ins.tick_params(labelsize=6)
+        ins.set_xlabel(r"$t$", fontsize=6, labelpad=1)
+        ins.yaxis.tick_right()  # tick labels and label right of the inset, off the main curves
+        ins.yaxis.set_label_position("right")
+        ins.set_ylabel(r"height [$L$]", fontsize=6, labelpad=2)
         ins.grid(alpha=0.3)
         rect, connectors = ax.indicate_inset_zoom(ins, edgecolor="k")
         rect.set_linestyle("--")
     save(fig, outputs)
 
 
+STICKY_START, DETACHMENT = 2, 3
+
+
 def sticky_traj(datasets, spec, outputs) -> None:
-    """Fig. sticky-traj: one panel per eps (eq. sticky-ic), impacts as dots, the sticky interval shaded."""
+    """Fig. sticky-traj: one panel per eps (eq. sticky-ic), solid dots at the contacts, t_c marked.
+
+    For eps = 0 the run is one sticky contact: its two dots are the start (t = 0) and the
+    detachment at t_c (the lower mass rests on the floor in between, shaded); t_c, read from
+    that run, is marked in every panel.  For eps > 0 every dot is an impact; the title counts
+    the dots drawn and those in (0, t_c).
+    """
     t1 = float(spec.get("t_end", 12.0))
     times = np.linspace(0.0, t1, 6000)
-    fig, axes = plt.subplots(len(datasets), 1, figsize=(WIDTH, 2.0 * len(datasets)), sharex=True)
-    for ax, ds in zip(np.atleast_1d(axes), datasets):
+    fig, axes = plt.subplots(len(datasets), 1, figsize=(WIDTH, 1.75 * len(datasets) + 0.6), sharex=True)
+    axes = np.atleast_1d(axes)
+    sticky = [ds for ds in datasets if np.any(ds["kind"].values == DETACHMENT)]
+    t_c = float(sticky[0]["t"].values[sticky[0]["kind"].values == DETACHMENT][0]) if sticky else None
+    for ax, ds in zip(axes, datasets):
         x, y = _curves(ds, times)
-        ax.plot(times, y, color="C0", label=r"$y(t)$")
-        ax.plot(times, x, color="C1", label=r"$x(t)$")
-        ti = _impacts(ds, 0.0, t1)
-        ax.plot(ti, np.zeros_like(ti), "k.", ms=3, label="impacts")
-        kind = ds["kind"].values
-        t = ds["t"].values
-        for start in np.flatnonzero(kind == 2):
+        ax.plot(times, y, color="C0", label=r"$y(t)$, upper mass")
+        ax.plot(times, x, color="C1", label=r"$x(t)$, lower mass")
+        t, kind = ds["t"].values, ds["kind"].values
+        dots = t[np.isin(kind, (IMPACT, STICKY_START, DETACHMENT)) & (t <= t1)]
+        ax.plot(dots, np.zeros_like(dots), "k.", ms=4, label="contacts (solid dots)", zorder=3)
+        for start in np.flatnonzero(kind == STICKY_START):
             end = t[start + 1] if start + 1 < t.size else t1
-            ax.axvspan(t[start], min(end, t1), color="0.85", lw=0, label="sticky phase")
-            ax.plot([t[start], min(end, t1)], [0, 0], "k.", ms=4)
+            ax.axvspan(t[start], min(end, t1), color="0.88", lw=0, label="lower mass on the floor (sticky)")
+        eps = float(ds.attrs["xdot0"])
+        if eps == 0.0:
+            what = "one sticky contact: the dots are its start and its detachment at $t_c$"
+        else:
+            inside = int(np.count_nonzero((kind == IMPACT) & (t > 0) & (t < t_c))) if t_c else 0
+            what = "%d impacts drawn, %d of them in $(0, t_c)$" % (dots.size, inside)
+        if t_c is not None:
+            ax.axvline(t_c, color="C3", lw=0.8, ls="--", label=r"$t_c$ (end of the $\epsilon=0$ sticky contact)")
         ax.set_ylabel(r"height  [$L$]")
-        ax.set_title(r"$\epsilon = %g$  (%d impacts in view)" % (ds.attrs["xdot0"], ti.size))
-        ax.legend(loc="center right", ncol=1, fontsize=7)
-    label_time(np.atleast_1d(axes)[-1])
-    fig.suptitle(r"Fig. sticky-traj: $\gamma=%g$, $\mu=%g$, $\dot Y_0=%g$ (eq. sticky-ic)"
-                 % (datasets[0].attrs["gamma"], datasets[0].attrs["mu"], datasets[0].attrs["ydot0"]))
-    fig.tight_layout()
+        ax.set_title(r"$\epsilon = %s$: %s" % (tex_num(eps), what), fontsize=8)
+    if t_c is not None:
+        axes[0].annotate(r"$t_c=%.4f$" % t_c, xy=(t_c, 0.5), xycoords=("data", "axes fraction"),
+                         xytext=(4, 0), textcoords="offset points", color="C3", fontsize=7)
+    label_time(axes[-1])
+    handles = {}
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=3, fontsize=7, frameon=False)
+    fig.suptitle(r"Fig. sticky-traj: $\gamma=%s$, $\mu=%s$, $\dot Y_0=%s$ (eq. sticky-ic)"
+                 % tuple(tex_num(datasets[0].attrs[k]) for k in ("gamma", "mu", "ydot0")), fontsize=9)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     save(fig, outputs)

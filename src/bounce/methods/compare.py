@@ -60,7 +60,7 @@ from .base import FAILURES, MethodResult
 log = logging.getLogger(__name__)
 
 CATEGORY_COLORS = {
-    "": "0.55", "missed_impact": "C3", "fell_through": "C1", "stall": "C4", "energy_gain": "C0",
+    "": "0.75", "missed_impact": "C3", "fell_through": "C1", "stall": "C4", "energy_gain": "C0",
     "collapse": "C5", "endless_contact": "C2", "budget": "0.2",
 }
 
@@ -537,23 +537,32 @@ _MARKERS = {"scipy": "o", "penalty": "s", "moreau-jean": "^", "exact": "*"}
 def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
     """Four log-log panels: error vs CPU time, one curve per method/setting sweep; exact as a vertical line.
 
-    Hollow markers: the long run failed (its category in the stability map)."""
-    from ..figures.common import WIDTH, plt, save
+    Panel (d) reads the long run: a hollow marker there is a run that stopped before its last
+    impact (the stability map says why), its error taken at the last n it reached.  The dotted
+    line of (d) is the chaos floor: the relative spread of n tau_n mu/3 among exact runs from
+    initial states perturbed by spread_eps -- beyond the predictability horizon no method can
+    be closer to the reference than that."""
+    from ..figures.common import WIDTH, plt, save, tex_num
 
+    n_h = int(ds.attrs["n_h"])
+    asym = json.loads(ds.attrs["spec"]).get("asymptotic", {})
     panels = [
-        ("cpu_transient", "err_impact_times", "CPU time, transient [s]",
-         r"(a) rel. error, impact times $1..n_h$"),
-        ("cpu_transient", "err_y_rms", "CPU time, transient [s]", r"(b) RMS error of $y(t)$, window [L]"),
-        ("cpu_per_flight", "err_one_step_max", "CPU time per flight [s]",
-         "(c) one-step rel. error (time, speed)"),
+        ("cpu_transient", "err_impact_times", "CPU time, transient run [s]",
+         r"max rel. error of $t_1,\dots,t_{n_h}$, $n_h=%d$" % n_h, "(a) impact times (first $n_h$ impacts)"),
+        ("cpu_transient", "err_y_rms", "CPU time, transient run [s]", r"RMS error of $y(t)$  [$L$]",
+         r"(b) height of the upper mass on $t\in[%s]$" % ", ".join(
+             f"{v:g}" for v in json.loads(ds.attrs["y_window"])["t"])),
+        ("cpu_per_flight", "err_one_step_max", "CPU time per flight [s]", "max rel. error (time, speed)",
+         "(c) one flight from an exact post-impact state"),
         ("cpu_per_impact", "err_asym_last", "CPU time per impact, long run [s]",
-         r"(d) rel. error of $n\tau_n\mu/3$, largest $n$"),
+         r"rel. error of $n\tau_n\mu/3$", "(d) asymptotic constant at the largest $n$ reached"),
     ]
     ds = ds.copy()
     ds["err_asym_last"] = np.abs(ds["asym_constant_last"] / ds["asym_constant_last_ref"] - 1.0)
-    fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
+    fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 6.0))
     colors = {}
-    for ax, (xv, yv, xl, yl) in zip(axes.flat, panels):
+    for ax, (xv, yv, xl, yl, title) in zip(axes.flat, panels):
+        long_run = yv == "err_asym_last"
         for lab, method, idx in _curves(ds):
             if method == "exact":
                 ax.axvline(float(ds[xv].values[idx[0]]), color="k", ls="--", lw=0.8)
@@ -561,78 +570,110 @@ def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
             c = colors.setdefault(lab, f"C{len(colors) % 10}")
             x, y = ds[xv].values[idx], ds[yv].values[idx]
             ok = np.isfinite(x) & np.isfinite(y) & (y > 0) & (x > 0)
-            ax.plot(x[ok], y[ok], "-", color=c, lw=0.8, label=lab if ax is axes.flat[0] else None)
-            failed = ds["failure"].values[idx] != ""
+            stopped = (ds["failure"].values[idx] != "") if long_run else np.zeros(idx.size, dtype=bool)
             mk = _MARKERS.get(method, "o")
-            ax.plot(x[ok & ~failed], y[ok & ~failed], mk, color=c, ms=3)
-            ax.plot(x[ok & failed], y[ok & failed], mk, mfc="none", color=c, ms=3)
+            ax.plot(x[ok], y[ok], "-", color=c, lw=0.8, label=lab if ax is axes.flat[0] else None)
+            ax.plot(x[ok & ~stopped], y[ok & ~stopped], mk, color=c, ms=3.5)
+            ax.plot(x[ok & stopped], y[ok & stopped], mk, mfc="none", color=c, ms=3.5)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel(xl)
-        ax.set_ylabel(yl)
+        ax.set_xlabel(xl, fontsize=7)
+        ax.set_ylabel(yl, fontsize=7)
+        ax.set_title(title, fontsize=7, loc="left")
+        ax.tick_params(labelsize=6)
     floor = ds["asym_spread_last"].values
     floor = floor[np.isfinite(floor)]
+    d = axes.flat[3]
     if floor.size:
-        axes.flat[3].axhline(float(np.median(floor)), color="0.4", ls=":", lw=0.8)
-        axes.flat[3].text(0.02, 0.04, "dotted: chaos floor (median)", transform=axes.flat[3].transAxes, fontsize=6)
-    axes.flat[0].text(0.02, 0.02, "dashed: exact solver", transform=axes.flat[0].transAxes, fontsize=7)
-    fig.legend(loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, -0.02))
-    fig.suptitle(r"Work-precision, $\gamma=%g$, $\mu=%g$ (hollow: long run failed)" % (ds.attrs["gamma"], ds.attrs["mu"]))
-    fig.tight_layout(rect=(0, 0.08, 1, 1))
+        d.axhline(float(np.median(floor)), color="0.4", ls=":", lw=1.0)
+        d.text(0.07, 0.03, "dotted: chaos floor, the spread of\n$n\\tau_n\\mu/3$ among exact runs from\n"
+               r"initial states perturbed by $%s$" "\n(median over the $n$ reached)"
+               % tex_num(asym.get("spread_eps", 1e-9)), transform=d.transAxes, fontsize=5.5, va="bottom")
+    d.text(0.98, 0.97, "hollow: the long run stopped early\n(error at the last $n$ it reached)",
+           transform=d.transAxes, fontsize=5.5, ha="right", va="top")
+    fig.legend(loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, 0.0))
+    fig.suptitle(r"Work-precision, $\gamma=%s$, $\mu=%s$ (drop from $\psi(0)=6$): error against CPU time; "
+                 r"dashed: the exact solver (the reference)" % (tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"])),
+                 fontsize=8)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     save(fig, outputs)
 
 
-def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """One panel per method: for each setting (x) and start n0, a bar over the impact indices the run
-    covered and a marker at its end coloured by the failure category (shape: the curve, e.g. solver or
-    stiffness); right axis: the exact flight time 3/(mu n) at that index."""
-    from ..figures.common import WIDTH, plt, save
+#: the stability map's outcome of a run, in words (the one encoding of the figure: colour)
+OUTCOMES = {
+    "": "completed: every requested impact",
+    "missed_impact": "stopped: missed an impact",
+    "fell_through": "stopped: fell through the floor",
+    "stall": "stopped: stalled at the floor",
+    "energy_gain": "stopped: energy grew",
+    "collapse": "stopped: inelastic collapse",
+    "endless_contact": "stopped: contact never ends",
+    "budget": "stopped: CPU-time budget used up",
+}
 
-    methods = list(dict.fromkeys(ds["method"].values.tolist()))
-    fig, axes = plt.subplots(1, len(methods), figsize=(WIDTH, 3.3), squeeze=False)
+
+def _setting_text(setting_json: str) -> str:
+    """A run's settings for a label: {"rtol": 1e-06, "solver": "RK45"} -> "RK45, rtol=1e-06"."""
+    setting = json.loads(setting_json)
+    words = [str(v) for v in setting.values() if isinstance(v, str)]
+    words += [f"{k}={_short(_number(v))}" for k, v in setting.items() if not isinstance(v, str)]
+    return ", ".join(words)
+
+
+def _short(v: float) -> str:
+    """0.5 -> 0.5, 1e-06 -> 1e-6, 10000.0 -> 1e4."""
+    return f"{v:g}" if 1e-2 <= abs(v) < 1e3 else f"{v:.0e}".replace("e-0", "e-").replace("e+0", "e").replace("e+", "e")
+
+
+def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
+    """One row per method and setting; for each start index n0 (one line each, n0 ticked on the top
+    axis) a bar over the impact indices the run simulated, coloured by why it stopped; top axis also
+    gives the exact flight time 3/(mu n) at that index (the time scale a method must resolve)."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    from ..figures.common import WIDTH, plt, save, tex_num
+
     mu = float(ds.attrs["mu"])
-    shapes = "osD^vP*X"
-    seen = set()
-    top = float(ds["n_impacts"].max()) * 3
-    for ax, m in zip(axes[0], methods):
-        sub = ds.where(ds["method"] == m, drop=True)
-        curves = list(_curves(sub))
-        width = 10 ** (0.12 * (len(curves) - 1))
-        for j, (lab, _, idx) in enumerate(curves):
-            shift = 10 ** (0.12 * j) / math.sqrt(width)
-            mk = shapes[j % len(shapes)]
-            for i in idx:
-                x = float(sub["sweep_value"].values[i]) * shift
-                for k, n0 in enumerate(sub["start"].values):
-                    n_end = max(int(sub["n_impacts"].values[i, k]), 1)
-                    ax.plot([x, x], [max(int(n0), 1), n_end], "-", color="0.75", lw=1.2, zorder=1)
-                    f = str(sub["failure"].values[i, k])
-                    ax.plot(x, n_end, mk, color=CATEGORY_COLORS.get(f, "k"), ms=3.5, mec="k", mew=0.3, zorder=2,
-                            label=(f or "ran to the event budget") if f not in seen else None)
-                    seen.add(f)
-            ax.plot([], [], mk, color="w", mec="k", mew=0.6, ms=3.5, label=lab.replace(m, "").strip() or m)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.xaxis.set_minor_formatter(plt.NullFormatter())
-        ax.set_xlabel(str(sub["sweep_key"].values[0]))
-        ax.set_title(m, fontsize=8)
-        ax.set_ylim(0.8, top)
-        handles, labels = ax.get_legend_handles_labels()
-        shape_h = [(h, lab) for h, lab in zip(handles, labels) if h.get_markerfacecolor() == "w"]
-        if len(shape_h) > 1:
-            ax.legend(*zip(*shape_h), fontsize=5, loc="lower left", frameon=False, handlelength=1)
-        sec = ax.secondary_yaxis("right", functions=(lambda n: 3.0 / (mu * np.maximum(n, 1e-30)),
-                                                      lambda tau: 3.0 / (mu * np.maximum(tau, 1e-30))))
-        if ax is axes[0][-1]:
-            sec.set_ylabel(r"exact flight time $\approx 3/(\mu n)$")
-    axes[0][0].set_ylabel("impact index reached")
-    handles, labels = [], []
-    for ax in axes[0]:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if h.get_markerfacecolor() != "w" and lab not in labels:
-                handles.append(h)
-                labels.append(lab)
-    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, -0.02))
-    fig.suptitle(r"Stability map, $\gamma=%g$, $\mu=%g$: where each method stops and why" % (ds.attrs["gamma"], mu))
-    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    starts = [int(v) for v in ds["start"].values]
+    rows = [(str(ds["method"].values[i]), _setting_text(str(ds["setting"].values[i])), i) for lab, m, idx in
+            _curves(ds) for i in idx]
+    height = 0.8 / len(starts)
+    used = set(ds["failure"].values.ravel().tolist())
+    legend_in = 0.16 * (len(used) + 2)
+    fig, ax = plt.subplots(figsize=(WIDTH, 1.4 + legend_in + 0.11 * len(rows) * max(1.5, len(starts) / 2)))
+    for r, (method, text, i) in enumerate(rows):
+        for k, n0 in enumerate(starts):
+            y = r - 0.4 + height * (k + 0.5)
+            n_end = max(int(ds["n_impacts"].values[i, k]), 1)
+            f = str(ds["failure"].values[i, k])
+            ax.plot([max(n0, 1), n_end], [y, y], "-", color=CATEGORY_COLORS.get(f, "k"), lw=7.0 * height,
+                    solid_capstyle="butt")
+            ax.plot([max(n0, 1)], [y], "|", color="k", ms=8 * height, mew=0.6)
+    ax.set_yticks(range(len(rows)))
+    ax.set_yticklabels([f"{m}: {t}" for m, t, _ in rows], fontsize=6)
+    ax.set_ylim(len(rows) - 0.5, -0.5)
+    for r in range(1, len(rows)):
+        if rows[r][0] != rows[r - 1][0]:
+            ax.axhline(r - 0.5, color="k", lw=0.6)
+    ax.set_xscale("log")
+    top = float(ds["n_impacts"].max()) * 2
+    ax.set_xlim(0.8, top)
+    ax.set_xlabel(r"impact index $n$")
+    for n0 in starts:
+        ax.axvline(max(n0, 1), color="0.5", lw=0.5, ls=":")
+    sec = ax.secondary_xaxis("top", functions=(lambda n: 3.0 / (mu * np.maximum(n, 1e-30)),
+                                                lambda tau: 3.0 / (mu * np.maximum(tau, 1e-30))))
+    sec.set_xlabel(r"exact flight time $3/(\mu n)$ at that index  [$\sqrt{m/2k}$]", fontsize=7)
+    sec.tick_params(labelsize=6)
+    handles = [Patch(color="w", label="bar: the impacts a run simulated, from its start to where it stopped; "
+                                      "colour: why it stopped")]
+    handles += [Patch(color=CATEGORY_COLORS[f], label=OUTCOMES[f]) for f in OUTCOMES if f in used]
+    handles.append(Line2D([], [], color="k", marker="|", lw=0, ms=6,
+                          label="start $n_0$ = " + ", ".join(f"${tex_num(n)}$" for n in starts)
+                          + " (exact state there; one bar each, top to bottom)"))
+    fig.legend(handles=handles, loc="lower center", ncol=1, fontsize=6.5, frameon=False)
+    fig.suptitle(r"Stability map, $\gamma=%s$, $\mu=%s$ (drop from $\psi(0)=6$): how far each method gets "
+                 r"and why it stops" % (tex_num(ds.attrs["gamma"]), tex_num(mu)), fontsize=8)
+    fig.tight_layout(rect=(0, (legend_in + 0.1) / fig.get_figheight(), 1, 1))
     save(fig, outputs)

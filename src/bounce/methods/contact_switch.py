@@ -338,7 +338,7 @@ def plot_switch_study(ds, spec, outputs) -> None:
     """Error in y and E against delta, impacts against delta, and the exact solver's n(t) ~ e^{mu t/3}."""
     from matplotlib.lines import Line2D
 
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     fig, axes = plt.subplots(1, 3, figsize=(WIDTH, 2.7))
     a1, a2, a3 = axes
@@ -346,7 +346,7 @@ def plot_switch_study(ds, spec, outputs) -> None:
     handles = []
     for i, case in enumerate(ds["case"].values):
         d = ds.sel(case=case)
-        lab = r"$\gamma=%g$, $\mu=%g$" % (float(d["gamma"]), float(d["mu"]))
+        lab = r"$\gamma=%s$, $\mu=%s$" % (tex_num(float(d["gamma"])), tex_num(float(d["mu"])))
         handles.append(Line2D([], [], color=f"C{i}", label=lab))
         dl = ds["delta"].values
         sw = d["n_switches"].values > 0

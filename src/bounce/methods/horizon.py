@@ -514,7 +514,7 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
 def plot_horizon(ds: xr.Dataset, spec: dict, outputs) -> None:
     """Relative error of t_n against n (top) and against t_n (bottom) per regime and precision, with the
     horizons (dotted) and the fitted growth rates."""
-    from ..figures.common import WIDTH, label_time, plt, save
+    from ..figures.common import WIDTH, label_time, plt, save, tex_num
 
     names = list(ds["regime"].values)
     fig, axes = plt.subplots(2, len(names), figsize=(WIDTH, 4.8), sharey=True, squeeze=False)
@@ -539,8 +539,8 @@ def plot_horizon(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set_yticks([1e-40, 1e-32, 1e-24, 1e-16, 1e-8, 1.0])
         lam_n = float(d["lambda_n"].sel(precision="float64"))
         lam_t = float(d["lambda_t"].sel(precision="float64"))
-        axes[0][col].set_title(r"$\gamma=%g$, $\mu=%g$, $\psi(0)=%g$"
-                               % (float(d["gamma"]), float(d["mu"]), float(d["psi0"])), fontsize=8)
+        axes[0][col].set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$"
+                               % tuple(tex_num(float(d[k])) for k in ("gamma", "mu", "psi0")), fontsize=8)
         h64 = int(d["horizon"].sel(precision="float64"))
         if np.isfinite(lam_n):
             txt_n = r"$H_{64}=%d$, fit $\lambda_n=%.2f$" % (h64, lam_n)
@@ -559,6 +559,6 @@ def plot_horizon(ds: xr.Dataset, spec: dict, outputs) -> None:
         axes[row][0].set_ylabel(r"$|t_n - t_n^{\mathrm{ref}}|\,/\,t_n^{\mathrm{ref}}$")
     axes[0][0].legend(fontsize=6, loc="upper left")
     fig.suptitle(r"Predictability horizon of the exact solver: impact times against mpmath at %d digits "
-                 r"(dotted: first $n$ with error $>$ %g)" % (ds.attrs["dps"], ds.attrs["tol"]), fontsize=8)
+                 r"(dotted: first $n$ with error $>%s$)" % (ds.attrs["dps"], tex_num(ds.attrs["tol"])), fontsize=8)
     fig.tight_layout()
     save(fig, outputs)

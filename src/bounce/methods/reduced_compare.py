@@ -78,6 +78,20 @@ def _falcon_r(t_impacts: np.ndarray, paired: bool, n_max: int) -> np.ndarray:
     return r
 
 
+#: a dimer contact is a double impact while its inner flight is within this fraction of T_xi
+#: (the criterion of check restitution, its default ``double_band``)
+DOUBLE_BAND = 0.25
+
+
+def _double_impacts(t_impacts: np.ndarray, mu: float) -> int:
+    """Leading contacts m = 1, 2, ... that are double impacts: inner flight tau_{2m-1} within DOUBLE_BAND of
+    T_xi = pi/sqrt(1 - mu^2) (eq. char-times); beyond them f_n = tau_{2n} is not a macroscopic flight."""
+    tau = np.diff(np.concatenate([[0.0], t_impacts]))
+    inner = tau[1::2] / (math.pi / math.sqrt(1.0 - mu * mu)) if mu < 1.0 else np.zeros(0)
+    ok = np.abs(inner - 1.0) <= DOUBLE_BAND
+    return int(ok.size if ok.all() else np.argmin(ok))
+
+
 def _thin(x: np.ndarray, y: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
     if x.size <= k:
         return x, y
@@ -109,6 +123,7 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
     curve_t = np.full(shape + (kc + 200,), np.nan)
     curve_e = np.full(shape + (kc + 200,), np.nan)
     end_kind = np.empty(shape, dtype=object)
+    doubles = np.zeros(len(drops), dtype=np.int64)
     rigid.warm_up()
     for i, name in enumerate(drops):
         d = spec["drops"][name]
@@ -124,6 +139,7 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
                 e = tr.energy_excess[imp] / e0
                 paired = True
                 end_kind[i, j] = "none (no collapse; E -> E_m as t -> inf)"
+                doubles[i] = _double_impacts(t, m)
             else:
                 run, setting = dict((mm[0], (mm[1], mm[2])) for mm in RIGID_MODELS)[model]
                 res = run(p, ini, setting, max_events=max_events, t_max=t_max)
@@ -173,6 +189,9 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
             "curve_t": (dm + ("k",), curve_t, {"long_name": "impact times (thinned)", "units": "sqrt(m/2k)"}),
             "curve_energy": (dm + ("k",), curve_e, {"long_name": "energy above rest / its initial value, just after "
                                                                  "each impact (thinned)", **u}),
+            "double_impacts": (("case",), doubles, {
+                "long_name": "leading dimer contacts that are double impacts (inner flight within "
+                             f"{DOUBLE_BAND:g} T_xi of T_xi): the dimer's r_n is meaningful for n < this", **u}),
             "gamma": (("case",), [float(spec["drops"][k]["gamma"]) for k in drops], {"long_name": "gamma", **u}),
             "mu": (("case",), [float(spec["drops"][k]["mu"]) for k in drops], {"long_name": "mu", **u}),
             "psi0": (("case",), [float(spec["drops"][k]["psi0"]) for k in drops],
@@ -185,19 +204,26 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
 
 
 def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Energy above rest against t (left) and r_n against the macroscopic bounce (right), one row per drop."""
-    from ..figures.common import WIDTH, label_time, plt, save
+    """Energy above rest against t (left) and r_n against the macroscopic bounce (right), one row per drop.
+
+    The dimer's r_n = f_{n+1}/f_n (f_n = tau_{2n}) is drawn only while its contacts are double
+    impacts (n < ``double_impacts``): beyond, tau_{2n} is no longer a macroscopic flight and the
+    ratio means nothing.  The r_n axis spans every value drawn (nothing is clipped)."""
+    from ..figures.common import WIDTH, label_time, plt, save, tex_num
 
     drops = list(ds["case"].values)
-    fig, axes = plt.subplots(len(drops), 2, figsize=(WIDTH, 2.5 * len(drops)), squeeze=False)
+    fig, axes = plt.subplots(len(drops), 2, figsize=(WIDTH, 2.7 * len(drops)), squeeze=False)
     styles = {"dimer": dict(color="k", lw=1.2)}
     labels = {"dimer": "two-mass ball (exact)", "rigid-constant-r": r"rigid, $r=e^{-\mu T_\xi}$",
               "rigid-fifth": r"rigid, $r=1-(u/U)^{1/5}$", "rigid-our-r": "rigid, eq. our-r",
               "rigid-our-r/dimer-flight": r"eq. our-r, $\tau=u/\gamma$ below $u_c$",
               "time-of-contact": r"time of contact, $t_c=T_\xi$"}
+    bounce = ds["bounce"].values
     for i, drop in enumerate(drops):
         d = ds.sel(case=drop)
         a1, a2 = axes[i]
+        paired = int(d["double_impacts"])
+        drawn = []
         for j, model in enumerate(ds["model"].values):
             st = dict(styles.get(model, dict(color=f"C{j - 1}", lw=0.8)))
             st["zorder"] = 3 if model == "dimer" else 2
@@ -208,8 +234,17 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
             if np.isfinite(te):
                 a1.axvline(te, ls=":", lw=0.8, color=st["color"])
             r = d["r_n"].sel(model=model).values
-            a2.plot(ds["bounce"].values, r, "o" if model == "dimer" else "-", ms=2.0, color=st["color"],
+            keep = np.isfinite(r) & ((bounce < paired) if model == "dimer" else True)
+            a2.plot(bounce[keep], r[keep], "o" if model == "dimer" else "-", ms=2.5, color=st["color"],
                     lw=st["lw"], zorder=st["zorder"])
+            drawn.append(r[keep])
+        drawn = np.concatenate(drawn)
+        if drawn.size:
+            pad = 0.05 * max(np.ptp(drawn), 0.05)
+            a2.set_ylim(drawn.min() - pad, drawn.max() + pad)
+        a2.axvline(paired - 0.5, color="k", lw=0.6, ls="--")
+        a2.text(paired - 0.5, 0.4, " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
+                transform=a2.get_xaxis_transform(), fontsize=6, va="center")
         ends = np.concatenate([d["t_model_end"].values, d["t_rest"].values])
         ends = ends[np.isfinite(ends)]
         a1.set_xlim(0.0, 1.25 * ends.max() if ends.size else None)
@@ -217,12 +252,13 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.set_ylim(1e-12, 3)
         label_time(a1)
         a1.set_ylabel(r"$(E-E_{\rm rest})/(E_0-E_{\rm rest})$")
-        a1.set_title(r"$\gamma=%g$, $\mu=%g$, $\psi(0)=%g$: energy (dotted: collapse/contact)"
-                     % (float(d["gamma"]), float(d["mu"]), float(d["psi0"])), fontsize=7)
+        a1.set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$:" "\n" r"energy (dotted: collapse/contact)"
+                     % (tex_num(float(d["gamma"])), tex_num(float(d["mu"])), tex_num(float(d["psi0"]))), fontsize=7)
+        a2.set_xscale("log")
         a2.set_xlabel(r"macroscopic bounce $n$")
         a2.set_ylabel(r"$r_n$")
-        a2.set_ylim(0.6, 1.1)
-        a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots); rigid $u_{n+1}/u_n$", fontsize=7)
+        a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots);" "\n" r"rigid models $u_{n+1}/u_n$ (lines)",
+                     fontsize=7)
     handles, labs = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labs, loc="lower center", ncol=3, fontsize=7, frameon=False)
     fig.suptitle("Rigid-ball restitution models against the two-mass ball (time in $\\sqrt{m/2k}$; $E_{\\rm rest}$: "
@@ -460,20 +496,66 @@ def least_model(spec: dict) -> xr.Dataset:
     )
 
 
+#: quantity of interest -> what its error measures (the errors of least_model's _Reference.error)
+QOI_TEXT = {
+    "y_t": r"$y(t)$: max abs. error [$L$]",
+    "r_n": r"$r_n$ (fig. rest-coeff): max abs. error",
+    "impact_states": r"$\dot X_n$ at every impact: max rel. error",
+    "asymptotic_laws": r"$n\tau_n\mu/3$, $n\dot X_n\mu/3\gamma$: max abs. error",
+}
+
+
+SETTING_NAMES = {"n0": "$n_0$", "delta": r"$\delta$"}
+
+
+def _candidate_text(name: str, setting: str) -> str:
+    """'exact', '{}' -> 'exact solver'; 'asymptotic-map', 'n0=10000' -> 'asymptotic map, n0 = 1e4'."""
+    from ..figures.common import tex_num
+
+    words = {"exact": "exact solver"}.get(name, name.replace("-", " "))
+    setting = setting.strip().strip("{}").replace("'", "")
+    if not setting:
+        return words
+    parts = []
+    for item in setting.replace(":", "=").split(","):
+        key, _, value = (p.strip() for p in item.partition("="))
+        try:
+            value = "$%s$" % tex_num(float(value))
+        except ValueError:
+            pass
+        parts.append("%s = %s" % (SETTING_NAMES.get(key, key), value))
+    return words + ", " + ", ".join(parts)
+
+
 def plot_least_model(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Error (in units of the tolerance) against CPU time per scene and candidate; the chosen one circled."""
+    """Error (in units of the scene's tolerance, worst over its quantities of interest) against CPU
+    time per scene and candidate; the cheapest one that meets every tolerance circled.
+
+    The exact solver is the reference: its error is 0 by construction, not a measurement, so it
+    is a dashed vertical line (its CPU time) and a star in the bottom strip ("reference"), with
+    any candidate that reproduces it exactly (the contact switch that never switches).  A
+    candidate that cannot deliver a quantity (no spring: no Y_n) or fails has infinite error:
+    top strip.  Panel titles give each scene's quantities of interest and tolerances."""
     from matplotlib.lines import Line2D
     from matplotlib.ticker import LogLocator, NullFormatter
 
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     scenes = list(ds["scene"].values)
     cands = list(ds["candidate"].values)
     ncol = 3
     nrow = math.ceil((len(scenes) + 1) / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(WIDTH, 2.3 * nrow), squeeze=False)
-    markers = "os^vDP*X"
-    lo, hi = 1e-18, 1e18
+    fig, axes = plt.subplots(nrow, ncol, figsize=(WIDTH, 2.7 * nrow), squeeze=False)
+    markers = "*os^vDPX"
+    err_all = ds["error"].values
+    finite = err_all[np.isfinite(err_all) & (err_all > 0)]
+    lo = 10.0 ** (math.floor(math.log10(min(finite.min(), 1e-2))) - 1) if finite.size else 1e-3
+    hi = 10.0 ** (math.ceil(math.log10(max(finite.max(), 1e2))) + 1) if finite.size else 1e3
+    zero_y, inf_y = lo / 30.0, hi * 30.0  # the two strips, outside the measured range
+
+    def y_of(e):
+        return inf_y if not np.isfinite(e) else (zero_y if e == 0 else e)
+
     for k, sc in enumerate(scenes):
         ax = axes[k // ncol][k % ncol]
         d = ds.sel(scene=sc)
@@ -482,33 +564,47 @@ def plot_least_model(ds: xr.Dataset, spec: dict, outputs) -> None:
             t = float(d["cpu"].sel(candidate=c))
             if not np.isfinite(t):
                 continue
-            e_plot = min(max(e, lo), hi) if np.isfinite(e) else hi
+            if c == "exact":
+                ax.axvline(t, color="k", lw=0.7, ls="--")
             filled = bool(int(d["meets"].sel(candidate=c)))
-            ax.loglog(max(t, 1e-6), e_plot, markers[j % len(markers)], color=f"C{j}", ms=4,
-                      mfc=None if filled else "none")
-        ax.axhline(1.0, color="k", lw=0.6, ls="--")
+            ax.loglog(t, y_of(e), markers[j % len(markers)], color=f"C{j}", ms=6 if c == "exact" else 4,
+                      mfc=None if filled else "none", zorder=3)
+        ax.axhspan(lo / 100, lo, color="0.92", zorder=0)
+        ax.axhspan(hi, hi * 100, color="0.92", zorder=0)
+        ax.axhline(1.0, color="C3", lw=0.7, ls="-")
         ch = str(d["chosen"].values).split(" (")[0]
-        ax.loglog(max(float(d["cpu"].sel(candidate=ch)), 1e-6), min(max(float(d["error"].sel(candidate=ch)), lo), hi),
-                  "o", ms=10, mfc="none", color="k")
-        ax.set_title(f"{sc}\nchosen: {d['chosen'].values}", fontsize=7)
+        ax.loglog(float(d["cpu"].sel(candidate=ch)), y_of(float(d["error"].sel(candidate=ch))),
+                  "o", ms=12, mfc="none", color="k", mew=0.8, zorder=4)
+        qois = [q.split(":") for q in str(d["tolerance"].values).split("; ")]
+        lines = ["%s, tol $%s$" % (QOI_TEXT.get(q.strip(), q), tex_num(float(tol))) for q, tol in qois]
+        chosen = _candidate_text(ch, str(d["setting"].sel(candidate=ch).values))
+        ax.set_title("%s\n%s\nchosen: %s" % (sc, "\n".join(lines), chosen), fontsize=6)
         ts = d["cpu"].values[np.isfinite(d["cpu"].values)]
         if ts.size:
-            ax.set_xlim(max(ts.min(), 1e-6) / 3, ts.max() * 3)
-        ax.set_xlabel("CPU time [s]")
-        ax.set_ylabel("error / tolerance")
-        ax.set_ylim(lo / 10, hi * 10)
+            ax.set_xlim(ts.min() / 3, ts.max() * 3)
+        ax.set_xlabel("CPU time [s]", fontsize=7)
+        ax.set_ylabel("error / tolerance", fontsize=7)
+        ax.set_ylim(lo / 100, hi * 100)
+        ticks = [10.0**k for k in range(round(math.log10(lo)) + 2, round(math.log10(hi)) - 1) if k % 3 == 0]
+        ax.set_yticks([zero_y] + ticks + [inf_y])
+        ax.set_yticklabels(["reference"] + ["$%s$" % tex_num(v) for v in ticks] + [r"$\infty$"], fontsize=6)
+        ax.yaxis.set_minor_locator(plt.NullLocator())
         ax.xaxis.set_major_locator(LogLocator(numticks=4))
         ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.yaxis.set_major_locator(LogLocator(numticks=5))
-    leg_ax = axes[(len(scenes)) // ncol][len(scenes) % ncol]
+        ax.tick_params(axis="x", labelsize=6)
+    leg_ax = axes[len(scenes) // ncol][len(scenes) % ncol]
     leg_ax.axis("off")
     for k in range(len(scenes) + 1, nrow * ncol):
         axes[k // ncol][k % ncol].axis("off")
-    handles = [Line2D([], [], marker=markers[j % len(markers)], color=f"C{j}", lw=0, ms=4, label=c)
-               for j, c in enumerate(cands)]
-    handles.append(Line2D([], [], marker="o", color="k", mfc="none", lw=0, ms=8, label="chosen"))
-    leg_ax.legend(handles=handles, loc="center", fontsize=6, frameon=False)
-    fig.suptitle("Cheapest method within each scene's tolerance (filled: meets it; error 0 drawn at the bottom, "
-                 "inf at the top)", fontsize=8)
+    handles = [Line2D([], [], marker=markers[j % len(markers)], color=f"C{j}", lw=0, ms=4,
+                      label=_candidate_text(c, "")) for j, c in enumerate(cands)]
+    handles += [Line2D([], [], marker="o", color="k", mfc="none", lw=0, ms=8, label="chosen (cheapest meeting it)"),
+                Line2D([], [], color="C3", lw=0.7, label="tolerance (error / tol = 1)"),
+                Line2D([], [], color="k", lw=0.7, ls="--", label="exact solver's CPU time")]
+    leg_ax.legend(handles=handles, loc="center", fontsize=6, frameon=False,
+                  title="filled: meets every tolerance\nhollow: does not", title_fontsize=6)
+    fig.suptitle("Least model per scene: error, in units of the scene's tolerance (worst quantity), against CPU "
+                 "time.\nThe exact solver is the reference (error 0 by construction, not measured): bottom strip; "
+                 "top strip: cannot deliver the quantity or failed", fontsize=7)
     fig.tight_layout()
     save(fig, outputs)

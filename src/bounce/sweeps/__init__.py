@@ -1,0 +1,17 @@
+"""Parameter studies at scale: one module per sweep, sharded by the pipeline, gathered into one netCDF.
+
+``registry()`` maps each sweep's name (its key under ``sweeps:`` in config/config.yaml) to its
+:class:`~bounce.sweeps.base.Sweep`.  See :mod:`bounce.sweeps.base` for the contract.
+"""
+
+from __future__ import annotations
+
+import functools
+
+from .._registry import discover
+from .base import Sweep
+
+
+@functools.cache
+def registry() -> dict[str, Sweep]:
+    return discover(__name__, __path__, "SWEEP", Sweep)

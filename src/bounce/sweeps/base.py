@@ -1,0 +1,167 @@
+"""The contract of a sweep: independent items, sharded, run on every core of a job, gathered.
+
+A sweep module in ``bounce.sweeps`` defines ``SWEEP = Sweep(...)``:
+
+* ``size(spec)``: how many items (grid cells, Monte-Carlo samples) the sweep has;
+* ``prepare(spec, items)``: the per-item inputs of the items ``items`` (arrays over
+  the items, e.g. their (mu, gamma) or their random initial state, drawn once for
+  the whole sweep so that a sample does not depend on the sharding);
+* ``compute(spec, inputs)``: the results of a batch of items, a dict of arrays.
+  Arrays whose first dimension in ``variables`` is ``item`` hold one row per item;
+  every other array is a count over the batch (a histogram) and is *added* when
+  batches and shards are combined.  It runs in a worker process;
+* ``finish(ds, spec)``: the gathered dataset -> the sweep's dataset (reshaped to its
+  grid, pooled numbers);
+* ``plot(ds, spec, outputs)``: the figure, from the gathered dataset alone;
+* ``memory_mb(spec)``: the peak memory of one worker (the rules request workers x that).
+
+An item's result depends on nothing but the spec and its index, so the gathered file is
+the same bytes whatever the number of shards, workers or machines (checked in
+tests/test_sweeps.py and tests/test_slurm.py).  The Snakemake rules
+(``workflow/rules/sweeps.smk``) run one job per shard and one gather job.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import os
+import sys
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+from ..model import InputError
+
+ITEM = "item"
+#: environment of the worker processes: one BLAS thread each (the parallelism is over items), so a
+#: result does not depend on how many workers ran it
+WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+              "NUMBA_NUM_THREADS": "1"}
+
+
+@dataclass(frozen=True)
+class Sweep:
+    name: str
+    title: str
+    size: Callable[[dict], int]
+    prepare: Callable[[dict, np.ndarray], dict]
+    compute: Callable[[dict, dict], dict]
+    variables: dict  # name -> (dims, long_name, units, comment or None)
+    finish: Callable[[xr.Dataset, dict], xr.Dataset]
+    plot: Callable[[xr.Dataset, dict, list], None]
+    memory_mb: Callable[[dict], int]  # peak memory of one worker process, for the cluster's mem_mb
+
+
+def shard_items(n_items: int, shard: int, shards: int) -> np.ndarray:
+    """Item indices of shard ``shard`` (0-based) of ``shards``: contiguous, sizes differing by at most 1."""
+    if not 1 <= shards <= n_items:
+        raise InputError(f"shards must be in [1, {n_items}] (the number of items), got {shards}")
+    if not 0 <= shard < shards:
+        raise InputError(f"shard must be in [0, {shards - 1}], got {shard}")
+    lo, hi = (n_items * shard) // shards, (n_items * (shard + 1)) // shards
+    return np.arange(lo, hi, dtype=np.int64)
+
+
+def _slice(inputs: dict, lo: int, hi: int) -> dict:
+    return {k: v[lo:hi] for k, v in inputs.items()}
+
+
+def combine(parts: list[dict], variables: dict) -> dict:
+    """Per-item arrays concatenated in order, counts added (batches of a shard, shards of a sweep)."""
+    out = {}
+    for name, (dims, *_) in variables.items():
+        arrays = [p[name] for p in parts]
+        out[name] = np.concatenate(arrays) if dims[:1] == (ITEM,) else np.sum(arrays, axis=0)
+    return out
+
+
+def _compute_batch(sweep_name: str, spec: dict, inputs: dict) -> dict:
+    from . import registry  # in the worker process
+
+    return registry()[sweep_name].compute(spec, inputs)
+
+
+def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, progress: bool | None = None) -> dict:
+    """``sweep.compute`` over ``items`` on ``workers`` processes, in batches, with a progress bar.
+
+    The first batch runs in this process (compiling numba's kernels into its on-disk cache
+    once), the others in spawned processes with one BLAS thread each (:data:`WORKER_ENV`);
+    an item's numbers do not depend on which process ran it (tests/test_sweeps.py).  ``progress``: a tqdm bar
+    on stderr (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
+    """
+    from tqdm import tqdm
+
+    inputs = sweep.prepare(spec, items)
+    n = len(items)
+    batch = max(1, min(int(spec.get("batch", 64)), math.ceil(n / max(workers, 1))))
+    bounds = [(lo, min(lo + batch, n)) for lo in range(0, n, batch)]
+    tty = sys.stderr.isatty()
+    bar = tqdm(total=n, desc=sweep.name, unit="item", file=sys.stderr, mininterval=0.5 if tty else 30.0,
+               disable=(not tty) if progress is None else not progress)
+    results: list = [None] * len(bounds)
+    saved = {k: os.environ.get(k) for k in WORKER_ENV}
+    os.environ.update(WORKER_ENV)  # inherited by the spawned workers at start-up
+    try:
+        # the first batch here: it fills numba's on-disk cache once, before the workers start and load it
+        results[0] = sweep.compute(spec, _slice(inputs, *bounds[0]))
+        bar.update(bounds[0][1] - bounds[0][0])
+        if len(bounds) > 1:
+            with ProcessPoolExecutor(max_workers=max(workers, 1),
+                                     mp_context=multiprocessing.get_context("spawn")) as pool:
+                futures = {pool.submit(_compute_batch, sweep.name, spec, _slice(inputs, lo, hi)): i
+                           for i, (lo, hi) in enumerate(bounds) if i > 0}
+                for future in as_completed(futures):
+                    i = futures[future]
+                    results[i] = future.result()
+                    bar.update(bounds[i][1] - bounds[i][0])
+    finally:
+        bar.close()
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+    return combine(results, sweep.variables)
+
+
+def to_dataset(sweep: Sweep, spec: dict, arrays: dict, items: np.ndarray, attrs: dict | None = None) -> xr.Dataset:
+    """The shard dataset: the sweep's variables with their units and long names, the item index as coordinate."""
+    data_vars = {}
+    for name, (dims, long_name, units, comment) in sweep.variables.items():
+        va = {"long_name": long_name, "units": units}
+        if comment:
+            va["comment"] = comment
+        data_vars[name] = xr.Variable(dims, arrays[name], va)
+    coords = {ITEM: xr.Variable((ITEM,), np.asarray(items, dtype=np.int64),
+                                {"long_name": "index of the item in the whole sweep", "units": "1"})}
+    from ..io import git_info
+
+    commit, dirty = git_info()
+    base = {"Conventions": "CF-1.10", "title": sweep.title, "source": f"bounce {__version__}",
+            "git_commit": commit, "git_dirty": dirty, "sweep": sweep.name}
+    return xr.Dataset(data_vars, coords=coords, attrs={**base, **(attrs or {})})
+
+
+def run_shard(sweep: Sweep, spec: dict, shard: int, workers: int = 1, progress: bool | None = None) -> xr.Dataset:
+    """The dataset of shard ``shard`` of ``spec['shards']``."""
+    shards = int(spec["shards"])
+    items = shard_items(sweep.size(spec), shard, shards)
+    arrays = run_items(sweep, spec, items, workers, progress)
+    return to_dataset(sweep, spec, arrays, items, {"shard": shard, "shards": shards})
+
+
+def gather(sweep: Sweep, spec: dict, shards: list[xr.Dataset]) -> xr.Dataset:
+    """Combine every shard (in any order) into the sweep's dataset; refuses missing or repeated items."""
+    shards = sorted(shards, key=lambda ds: int(ds.attrs["shard"]))
+    items = np.concatenate([ds[ITEM].values for ds in shards])
+    n = sweep.size(spec)
+    if not np.array_equal(items, np.arange(n)):
+        raise InputError(f"sweep {sweep.name}: the shards do not hold items 0..{n - 1} exactly once")
+    arrays = combine([{k: ds[k].values for k in sweep.variables} for ds in shards], sweep.variables)
+    ds = to_dataset(sweep, spec, arrays, items)
+    return sweep.finish(ds, spec)

@@ -1,0 +1,97 @@
+"""Stage 6: parameter studies at scale (config `sweeps`): each sweep is split into `shards` jobs,
+each using all its cores (`threads`), gathered into results/sweeps/<name>.nc, and drawn from that
+file alone into results/sweeps/fig-<name>.{png,pdf}.  On a cluster (workflow/profiles/slurm) every
+shard is one SLURM job with the cores, memory and run time declared below."""
+
+SWEEPS = config.get("sweeps", {})
+
+
+def sweep_spec(name):
+    """A sweep's config slice without `threads` (the cores of a job do not change its numbers)."""
+    return {k: v for k, v in SWEEPS[name].items() if k != "threads"}
+
+
+def sweep_shards(name):
+    n = int(SWEEPS[name]["shards"])
+    return [f"results/sweeps/{name}/shard-{k}-of-{n}.nc" for k in range(n)]
+
+
+def sweep_memory_mb(wildcards, threads):
+    """workers x the sweep's per-worker peak (bounce.sweeps: memory_mb), plus the job's own process."""
+    from bounce.sweeps import registry
+
+    return threads * registry()[wildcards.name].memory_mb(sweep_spec(wildcards.name)) + 500
+
+
+def sweep_files():
+    return [f"results/sweeps/{name}.nc" for name in SWEEPS] + [
+        f"results/sweeps/fig-{name}.{ext}" for name in SWEEPS for ext in ("png", "pdf")]
+
+
+rule sweep_shard:
+    """One shard of a sweep: its items on all the job's cores (worker processes)."""
+    output:
+        "results/sweeps/{name}/shard-{shard}-of-{shards}.nc",
+    params:
+        spec=lambda w: as_json(sweep_spec(w.name)),
+    threads: lambda w: int(SWEEPS[w.name].get("threads", 2))
+    resources:
+        mem_mb=sweep_memory_mb,
+        runtime=lambda w: int(SWEEPS[w.name].get("shard_minutes", 30)),
+    log:
+        "results/logs/sweeps/{name}/shard-{shard}-of-{shards}.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in SWEEPS) or "^$",
+        shard=r"\d+",
+        shards=r"\d+",
+    shell:
+        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "  # parallel over items, not in BLAS
+        "python -m bounce.tasks sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
+        "--workers {threads} --out {output} > {log} 2>&1"
+
+
+rule sweep_gather:
+    """Every shard of a sweep -> results/sweeps/<name>.nc (the same bytes whatever ran the shards)."""
+    input:
+        lambda w: sweep_shards(w.name),
+    output:
+        "results/sweeps/{name}.nc",
+    params:
+        spec=lambda w: as_json(sweep_spec(w.name)),
+    resources:
+        mem_mb=2000,
+        runtime=10,
+    log:
+        "results/logs/sweeps/{name}/gather.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in SWEEPS) or "^$",
+    shell:
+        "python -m bounce.tasks sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "--out {output} > {log} 2>&1"
+
+
+rule sweep_figure:
+    """A sweep's figure, from the gathered file alone."""
+    input:
+        "results/sweeps/{name}.nc",
+    output:
+        png=report("results/sweeps/fig-{name}.png", caption="../report/sweep.rst", category="Sweeps"),
+        pdf="results/sweeps/fig-{name}.pdf",
+    params:
+        spec=lambda w: as_json(sweep_spec(w.name)),
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    log:
+        "results/logs/sweeps/{name}/figure.log",
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in SWEEPS) or "^$",
+    shell:
+        "python -m bounce.tasks sweep-figure --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "--out {output.png} {output.pdf} > {log} 2>&1"
+
+
+rule sweeps:
+    """Every sweep and its figure: `snakemake --cores 2 sweeps` (or a cluster profile)."""
+    input:
+        sweep_files(),
