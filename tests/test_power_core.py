@@ -13,7 +13,7 @@ import os
 import numpy as np
 import pytest
 import reference as R
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, event, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
@@ -204,6 +204,12 @@ def test_first_contact_matches_dense_integration(spring, gamma, mu, u, xi, v):
     and x >= 0 before it."""
     tr = simulate_power(Parameters(gamma, mu), spring,
                         Deviations(x=0.0, xdot=u, xidot=v, eta=xi - spring.xi_eq(gamma)), max_events=1)
+    if tr.stop_reason == "slow_crossing":
+        # documented limit (bounce.power_flight): the spring creeps through its rest length too slowly
+        # for the crossing window to be exact to rounding; refused, never guessed
+        event("slow_crossing refusal")
+        assert len(tr) == 0
+        return
     tau = float(tr.tau[0])
     low, sol = dense_min_x(spring, gamma, mu, 0.0, u, xi, v, tau * (1 + 1e-12))
     # DOP853's own global error grows with the flight (flights here reach ~300 time units,

@@ -24,6 +24,10 @@ xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), and at x = 0
   energy xi'^2/2 + (gamma xi + V(xi))/2 (rate -mu xi'^2 |xi|^b), which bounds F on the
   rest of the phase and can prove it infinite as in :mod:`bounce.events`.
 
+Stop reasons: those of :mod:`bounce.events` plus ``sticky_unsupported`` (above) and
+``slow_crossing`` (a crossing of the rest length xi = 0 too slow to be computed to
+rounding, see :mod:`bounce.power_flight`); in both the records up to the stop are exact.
+
 Tangential contacts are classified by :func:`bounce.events._is_tangential` and
 :func:`bounce.events._is_sticky_onset` (the same rounding-level rule), with x''
 and x''' from the series at the contact.  Time is summed with Neumaier's
@@ -62,12 +66,14 @@ from .events import (
     compensated_add,
 )
 from .flight import EPS, FOUND, HORIZON
-from .power_flight import AT_REST, HANDOVER, first_contact, short_flight
+from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, first_contact, short_flight
 from .power_series import DEGREE_LONG, L_AP1, L_GAMMA, L_XI_EQ, law_array
 
 #: the sticky phase of the nonlinear spring is not integrated: the loop stops at its onset
 STOP_STICKY_UNSUPPORTED = len(STOP_NAMES)
-POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported",)
+#: a crossing of the rest length xi = 0 too slow to be computed to rounding (power_flight docstring)
+STOP_SLOW_CROSSING = STOP_STICKY_UNSUPPORTED + 1
+POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported", "slow_crossing")
 
 
 @njit(cache=True)
@@ -135,6 +141,9 @@ def run_power_events(
                 n += 1
                 stop = STOP_STICKY_UNSUPPORTED
                 break
+            if status == SLOW_CROSSING:
+                stop = STOP_SLOW_CROSSING
+                break
             if status != FOUND:
                 stop = STOP_TIME if status == HORIZON else STOP_FAILED
                 break
@@ -189,6 +198,8 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     energy_stop = float(energy_stop)
     if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
         raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    if params.spring != spring and params.spring.name != "linear":
+        raise InputError(f"spring must be the law of params ({params.spring!r}) or given with linear params, got {spring!r}")
     rho, a, b = (1.0, 0.0, 0.0) if spring.name == "linear" else (spring.rho, spring.a, spring.b)
     law = law_array(rho, a, b, params.mu, params.gamma)
     xi_eq = float(law[L_XI_EQ])
