@@ -207,6 +207,22 @@ def _is_sticky_onset(acc, jerk, xn):
 
 
 @njit(cache=True)
+def contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t):
+    """The state just after a contact reached with speed v and x'', x''' = acc, jerk, after a flight
+    of duration tau from (u, a) that ends with the spring at (eta_t, xid_t): ``(kind, u, a, eta)``.
+
+    An impact (eq. ``collision-rule``) exchanges psi' and xi': u -> -v, a -> psi'(tau^-) = u + a -
+    gamma tau.  A tangential contact (:func:`_is_tangential` at the rounding level of ``scale``)
+    exchanges nothing (psi' = xi' there): a sticky onset if :func:`_is_sticky_onset`, a grazing
+    otherwise.  Shared by every spring law's event loop (the impact rule does not involve the spring).
+    """
+    xn = rounding_level(scale)
+    if not _is_tangential(v, acc, jerk, xn):
+        return IMPACT, -v, u + a - gamma * tau, eta_t
+    return (STICKY_START if _is_sticky_onset(acc, jerk, xn) else GRAZING), 0.0, xid_t, eta_t
+
+
+@njit(cache=True)
 def rounding_level(scale):
     """xn = XN_ULPS eps scale: how well x is known at a contact (scale: the magnitudes of eq. (F)'s terms)."""
     return XN_ULPS * EPS * scale + 1e-300
@@ -304,22 +320,11 @@ def run_events(
             _, xidd, xiddd, _ = xi_derivatives(eta_t - gamma, xid_t, mu)
             acc = -gamma - xidd
             jerk = -xiddd
-            xn = rounding_level(scale)
-            if not _is_tangential(v, acc, jerk, xn):
-                kind = IMPACT  # eq. collision-rule: psi' <-> xi'
-                a = u + a - gamma * tau
-                u = -v
-                eta = eta_t
-            else:  # nothing exchanged: psi' = xi' at a tangential contact
-                a = xid_t
-                eta = eta_t
-                u = 0.0
-                if _is_sticky_onset(acc, jerk, xn):
-                    kind = STICKY_START
-                    sticky = True
-                else:
-                    kind = GRAZING
-                    t_start = liftoff_time(u, a, eta, gamma, params)
+            kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)
+            if kind == STICKY_START:
+                sticky = True
+            elif kind == GRAZING:
+                t_start = liftoff_time(u, a, eta, gamma, params)
         t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         _record(n, t_hi + t_lo, tau, kind, u, a, eta, gamma,
                 out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)

@@ -28,9 +28,9 @@ Stop reasons: those of :mod:`bounce.events` plus ``sticky_unsupported`` (above) 
 ``slow_crossing`` (a crossing of the rest length xi = 0 too slow to be computed to
 rounding, see :mod:`bounce.power_flight`); in both the records up to the stop are exact.
 
-Tangential contacts are classified by :func:`bounce.events._is_tangential` and
-:func:`bounce.events._is_sticky_onset` (the same rounding-level rule), with x''
-and x''' from the series at the contact.  Time is summed with Neumaier's
+Contacts follow :func:`bounce.events.contact` (the impact rule and the rounding-level
+classification of tangential contacts, shared with the linear loop), with x'' and x'''
+from the series at the contact.  Time is summed with Neumaier's
 compensated sum (:func:`bounce.events.compensated_add`).
 
 Energy (eq. ``nonlin-energy``): at x = 0 (psi = xi) the excess over the minimum
@@ -52,8 +52,6 @@ from numba import njit
 
 from .events import (
     DETACH,  # noqa: F401  (kind codes of the shared records)
-    GRAZING,
-    IMPACT,
     KIND_NAMES,
     STICKY_START,
     STOP_ENERGY,
@@ -61,11 +59,10 @@ from .events import (
     STOP_FAILED,
     STOP_NAMES,
     STOP_TIME,
-    _is_sticky_onset,
-    _is_tangential,
+    contact,
     compensated_add,
 )
-from .flight import EPS, FOUND, HORIZON
+from .flight import FOUND, HORIZON
 from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, first_contact, short_flight
 from .power_series import DEGREE_LONG, L_AP1, L_GAMMA, L_XI_EQ, law_array
 
@@ -148,22 +145,8 @@ def run_power_events(
                 stop = STOP_TIME if status == HORIZON else STOP_FAILED
                 break
         x0 = 0.0
-        xn = 4.0 * EPS * scale + 1e-300
-        sticky = False
-        if not _is_tangential(v, acc, jerk, xn):
-            kind = IMPACT  # eq. collision-rule: psi' <-> xi'
-            a = u + a - gamma * tau
-            u = -v
-            eta = eta_t
-        else:  # nothing exchanged: psi' = xi' at a tangential contact
-            a = xid_t
-            eta = eta_t
-            u = 0.0
-            if _is_sticky_onset(acc, jerk, xn):
-                kind = STICKY_START
-                sticky = True
-            else:
-                kind = GRAZING
+        kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)  # the shared rule
+        sticky = kind == STICKY_START
         t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         _record(n, t_hi + t_lo, tau, kind, u, a, eta, law,
                 out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
