@@ -183,12 +183,14 @@ def energy_non_increasing(m, spec) -> dict:
         judge(sc.max_inc <= budget and float(np.min(sc.e)) >= 0.0 and sc.formula_gap <= fbud)) for sc in m.scenes}
 
 
-def _rate_verdicts(m, c_expected: float, what: str) -> dict:
+def _rate_verdicts(m, spec, c_expected: float, what: str) -> dict:
     out = {}
     for sc in m.scenes:
         if not sc.c.size:
-            out[sc.name] = Verdict(what, "Discussion (dE/dt after eq. nonlin-energy)", sc.ctx, "", "no consecutive "
-                                   "short flights in the records", "", NOT_CHECKABLE)
+            out[sc.name] = Verdict(
+                f"{what} [{sc.name}]", "Discussion (dE/dt after eq. nonlin-energy)", sc.ctx, f"c = {c_expected:g}",
+                f"no two consecutive impacts with a flight <= tau_max = {spec['tau_max']:g} in the records (keep more "
+                "of the first events)", "none: nothing to measure", NOT_CHECKABLE)
             continue
         dev = float(np.max(np.abs(sc.c / c_expected - 1.0)))
         out[sc.name] = Verdict(
@@ -205,14 +207,14 @@ def _rate_verdicts(m, c_expected: float, what: str) -> dict:
 
 @claim(CLAIMS, "dissipation-rate", BEYOND, SUBJECT)
 def dissipation_rate(m, spec) -> dict:
-    return _rate_verdicts(m, 2.0, "dE/dt = -2 mu xi'^2 |xi|^b in flight (derived, theory.nonlin_energy_rate)")
+    return _rate_verdicts(m, spec, 2.0, "dE/dt = -2 mu xi'^2 |xi|^b in flight (derived, theory.nonlin_energy_rate)")
 
 
 @claim(CLAIMS, "printed-dissipation-rate", ERRATUM, SUBJECT,
        known_failure="the Discussion prints dE/dt = -mu xi'^2 |xi|^b; the equations of motion give -2 mu xi'^2 |xi|^b "
                      "(and a = b = 0 must give eq. energy-dissipation, -2 mu xi'^2)")
 def printed_dissipation_rate(m, spec) -> dict:
-    return _rate_verdicts(m, 1.0, "dE/dt = -mu xi'^2 |xi|^b as printed")
+    return _rate_verdicts(m, spec, 1.0, "dE/dt = -mu xi'^2 |xi|^b as printed")
 
 
 @claim(CLAIMS, "no-collapse", PAPER, SUBJECT)
