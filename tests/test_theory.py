@@ -289,7 +289,9 @@ def test_nonlin_equilibrium_xi_balances_gravity_and_is_the_energy_minimum(rho, a
     spring = PowerSpring(rho=rho, a=a, b=b)
     assert math.isclose(xi, spring.xi_eq(g), rel_tol=1e-15)
     # at rest on the floor (psi = xi) eq. nonlin-energy is minimal at xi_eq, with the solver's E_m
-    E = lambda x: theory.nonlin_energy(x, 0.0, x, 0.0, g, rho, a)  # noqa: E731
+    def E(x):
+        return theory.nonlin_energy(x, 0.0, x, 0.0, g, rho, a)
+
     assert math.isclose(E(xi), spring.energy_min(g), rel_tol=1e-14)
     h = 1e-3 * abs(xi)
     assert E(xi - h) > E(xi) and E(xi + h) > E(xi)
@@ -320,7 +322,7 @@ def _check_nonlin_energy_rate(rho, a, b):
     g, mu = 0.01, 0.3
 
     def rhs(t, y):
-        psi, psid, xi, xid = y
+        _, psid, xi, xid = y
         return [psid, -g, xid, -rho * xi * abs(xi) ** a - 2 * mu * xid * abs(xi) ** b]
 
     sol = mpmath.odefun(rhs, 0, [mpmath.mpf("0.05"), mpmath.mpf("0.01"), mpmath.mpf("-0.06"), mpmath.mpf("0.02")])

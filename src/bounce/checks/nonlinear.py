@@ -36,11 +36,21 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..fitting import log_select, tail_limit
 from ..events import IMPACT
+from ..fitting import log_select, tail_limit
 from ..flight import EPS
 from ..theory import nonlin_alpha_limit, nonlin_energy, nonlin_equilibrium_xi
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, variable
+from .base import (
+    BEYOND,
+    ERRATUM,
+    NOT_CHECKABLE,
+    PAPER,
+    Check,
+    Verdict,
+    claim,
+    judge,
+    variable,
+)
 
 NAME = "nonlinear"
 SUBJECT = "sec:Discussion"
@@ -115,7 +125,10 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
         m = idx.size
         sample["n"][i, :m], sample["q"][i, :m] = sc.n[idx], sc.q[idx]
         sample["flight"][i, :m], sample["tau"][i, :m] = sc.flight[idx], sc.tau[idx]
-    per = lambda f: np.array([f(sc) for sc in scenes], dtype=float)  # noqa: E731
+
+    def per(f) -> np.ndarray:
+        return np.array([f(sc) for sc in scenes], dtype=float)
+
     data = xr.Dataset(coords={"scene": ("scene", np.array([sc.name for sc in scenes], dtype=object),
                                         {"long_name": "input scene", "units": "1"})})
     data["scene_gamma"] = variable("scene", per(lambda s: s.gamma), "gamma")
@@ -269,7 +282,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
     for i, name in enumerate(ds["scene"].values):
         a, b = float(ds["scene_a"][i]), float(ds["scene_b"][i])
-        lab = r"%s ($a=%g$, $b=%g$)" % (name, a, b)
+        lab = rf"{name} ($a={a:g}$, $b={b:g}$)"
         n = ds["sample_n"].values[i]
         col = f"C{i}"
         a1.semilogx(n, ds["sample_q"].values[i], color=col, label=lab)
@@ -279,7 +292,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a2.loglog(n, slope / n, color=col, ls=":", lw=0.8)
     mu = float(ds["scene_mu"][0])
     nn = np.geomspace(1.0, float(np.nanmax(ds["sample_n"].values)), 50)
-    a2.loglog(nn, 3.0 / (mu * nn), "k--", lw=0.8, label=r"linear spring: $3/(\mu n)$, $\mu=%g$" % mu)
+    a2.loglog(nn, 3.0 / (mu * nn), "k--", lw=0.8, label=rf"linear spring: $3/(\mu n)$, $\mu={mu:g}$")
     a1.axhline(1.0, color="k", lw=0.6)
     a1.set_ylim(0.0, 2.0)
     a1.set_xlabel(r"impact index $n$")
