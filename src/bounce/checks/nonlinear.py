@@ -24,8 +24,9 @@ xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b, psi'' = -gamma (Hertz: a = b = 1/2).  C
    linear case.  Then t_n ~ ln(n)/(alpha gamma), the slope of claim 4.
 
 Limits (claims 5 and 6) use :func:`bounce.fitting.tail_limit` (the expansion of Lemma Giorgio's: L + ln n/n,
-1/n, ... terms) on the records with n >= fit_n_min; the error is the change of L when the window starts at its
-geometric middle, and the tolerance is limit_sigmas times that error (the fit's own uncertainty, nothing else).
+1/n, ... terms) on the records with n >= fit_n_min; the error is the larger change of L when the window starts at
+its geometric middle or a decade later (:func:`_limit`), and the tolerance is limit_sigmas times that error (the
+fit's own uncertainty, nothing else).
 """
 
 from __future__ import annotations
@@ -75,6 +76,7 @@ def _dissipation(sc, tau_max: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
+    """Everything the claims need from one power-law scene (x = 0 at every record: psi = xi = xi_eq + eta)."""
     a_ = ds.attrs
     name = str(a_.get("scene", f"input{i}"))
     gamma, mu = float(a_["gamma"]), float(a_["mu"])
@@ -110,10 +112,20 @@ def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
     sc.q = n * xdot * sc.alpha
     sc.flight = xdot / (gamma * sc.tau)  # arrival speed of the flight that ends at the record, over its length
     sc.fit_ok = imp.sum() >= 20 and n[imp][-1] / n[imp][0] >= 10.0
-    nan2 = (math.nan, math.nan)
-    sc.L_alpha = tail_limit(n[imp], sc.q[imp]) if sc.fit_ok else nan2
-    sc.L_flight = tail_limit(n[imp], sc.flight[imp]) if sc.fit_ok else nan2
+    sc.L_alpha = _limit(n[imp], sc.q[imp]) if sc.fit_ok else (math.nan, math.nan)
+    sc.L_flight = _limit(n[imp], sc.flight[imp]) if sc.fit_ok else (math.nan, math.nan)
     return sc
+
+
+def _limit(n, q) -> tuple[float, float]:
+    """tail_limit of q_n from n[0] on; error = the larger of its own (window start at the geometric middle) and the
+    change when the window starts a decade later (if two decades remain): one variant alone underestimates the
+    error when the first decade still carries the transient (measured: 1.9e-7 against a 9.7e-7 change at 1e6)."""
+    L, err = tail_limit(n, q)
+    late = n >= 10.0 * n[0]
+    if late.sum() >= 20 and n[-1] / n[late][0] >= 10.0:
+        err = max(err, abs(tail_limit(n[late], q[late])[0] - L))
+    return L, err
 
 
 def measure(spec: dict, inputs: list) -> SimpleNamespace:
@@ -255,7 +267,8 @@ def _limit_verdict(sc, spec, L, err, claim_text, ref, computed, expected_text) -
         f"{sc.ctx}: {computed}; limit by theory-shaped tail fit (L + ln n/n, 1/n, ... terms, bounce.fitting.tail_limit) "
         f"on impacts n >= {spec['fit_n_min']}",
         expected_text, f"L = {L:.8g} +- {err:.2g}" if ok else "no fit window (too few impacts)",
-        f"|L - 1| <= {k:g} x fit error (change of L with the window start; nothing else)",
+        f"|L - 1| <= {k:g} x fit error (change of L with the window start: geometric middle or a decade later; "
+        "nothing else)",
         judge(abs(L - 1.0) <= k * err) if ok else NOT_CHECKABLE)
 
 
