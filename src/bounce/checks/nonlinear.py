@@ -315,7 +315,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a2.set_xlabel(r"impact index $n$")
     a2.set_ylabel(r"flight time $\tau_n$ (units $\sqrt{m/2k}$)")
     a2.set_title(r"(b) $\tau_n$; dotted: $1/(\alpha\gamma n)$", fontsize=8)
-    a2.legend(fontsize=5.5)
+    a2.legend(fontsize=5.5, loc="lower left")
     fig.suptitle("nonlinear spring (Discussion): asymptotic laws (lengths in $L$, times in $\\sqrt{m/2k}$)", fontsize=9)
     fig.tight_layout()
     save(fig, outputs)
