@@ -43,6 +43,10 @@ OD = {"gamma": 1e-5, "mu": 2.0, "initial": {"psi": 0.25, "psidot": 0.0, "xi": 0.
       "stop": {"events": 30000}, "keep": {"first": 3000, "log_samples": 1000}}
 REST = {"gamma": 1e-5, "mu": 0.01, "initial": {"psi": 0.25, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
         "stop": {"events": 200000}}
+NONLIN = {name: {"gamma": 0.01, "mu": 0.3, "spring": {"law": "power", "rho": 1.0, "a": a, "b": b},
+                 "initial": {"psi": xi + 0.02, "psidot": 0.0, "xi": xi, "xidot": 0.0},
+                 "stop": {"events": 30000}, "keep": {"first": 10000, "log_samples": 1000}}
+          for name, a, b, xi in (("hertz", 0.5, 0.5, -0.0464), ("a1b0", 1.0, 0.0, -0.1), ("a05b1", 0.5, 1.0, -0.0464))}
 ODFULL = dict(OD, stop={"events": 3000}, keep=None)
 FALL = dict(UD, stop={"events": 3000}, keep=None)
 
@@ -60,6 +64,7 @@ OVERRIDES = {
                       "horizon": 50.0},
     "sticky-convergence": {"fit_eps_max": 1e-2, "band_mu": [0.0, 0.02]},
     "errata": {"asym_events": 20000, "asym_checkpoints": [1000, 10000], "map_iterations": 100000},
+    "nonlinear": {"equilibrium_tolerance": 1e-2},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -73,7 +78,8 @@ def spec(name: str, **changes) -> dict:
 def scenes() -> dict:
     return {"ud": scene_dataset(UD, "ud"), "od": scene_dataset(OD, "od"), "rest": scene_dataset(REST, "rest"),
             "odfull": scene_dataset(ODFULL, "odfull"), "fall": scene_dataset(FALL, "fall"),
-            "odall": scene_dataset(dict(OD, keep=None, stop={"events": 100000}), "od")}
+            "odall": scene_dataset(dict(OD, keep=None, stop={"events": 100000}), "od"),
+            **{k: scene_dataset(v, k) for k, v in NONLIN.items()}}
 
 
 def _synthetic_sticky_inputs(p_rms: float) -> list:
@@ -94,7 +100,8 @@ def inputs_for(name: str) -> list:
     s = scenes()
     return {"main-theorem": [s["ud"], s["od"]], "static-equilibrium": [s["ud"], s["od"], s["rest"]],
             "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
-            "sticky-convergence": _synthetic_sticky_inputs(1.6), "paper-figures": [s["fall"], s["rest"]]}.get(name, [])
+            "sticky-convergence": _synthetic_sticky_inputs(1.6), "paper-figures": [s["fall"], s["rest"]],
+            "nonlinear": [s[k] for k in NONLIN]}.get(name, [])
 
 
 @functools.cache
@@ -479,3 +486,21 @@ def test_dimer_impacts_continue_past_the_rigid_collapse_times():
     (v,) = group.verdicts(group.measure(spec("rigid-collapse"), [long_ud]), spec("rigid-collapse"),
                           only="dimer-no-collapse")
     assert v.verdict == OK, v
+
+
+# --------------------------------------------------------------------------- nonlinear
+
+def test_nonlinear_flight_law_flips_on_the_half_gamma_law():
+    """Flights doctored to tau_n = 2 Xdot_n/gamma (a centre of mass launched at the full Xdot_n) flip flight-law,
+    and not alpha-limit; t_n doctored to converge (a collapse) flips no-collapse."""
+    g = registry()["nonlinear"]
+    ds = scenes()["hertz"].copy(deep=True)
+    ds["tau"] = 2.0 * ds["tau"]
+    rows = g.verdicts(g.measure(spec("nonlinear"), [ds]), spec("nonlinear"))
+    assert row(rows, "nonlinear/flight-law[hertz]").verdict == NOT_REPRODUCED
+    assert row(rows, "nonlinear/alpha-limit[hertz]").verdict == REPRODUCED
+    ds = scenes()["hertz"].copy(deep=True)
+    ds["t"] = 100.0 - 100.0 / (ds["event"] + 1.0) ** 0.5  # tau_n ~ n^-1.5: summable, t_n -> 100
+    rows = g.verdicts(g.measure(spec("nonlinear"), [ds]), spec("nonlinear"))
+    assert row(rows, "nonlinear/no-collapse[hertz]").verdict == NOT_REPRODUCED
+    assert row(rows, "nonlinear/alpha-limit[hertz]").verdict == REPRODUCED

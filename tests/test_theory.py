@@ -272,3 +272,69 @@ def test_backward_contact_reaches_the_contact():
     end = reference.free_flight(g, mu, start.x, start.u, start.a, start.eta, T)
     assert abs(end.x) < 1e-40 and abs(end.u) < 1e-40 and start.x > 0
     assert Deviations(*start.floats()).x > 0
+
+
+# --------------------------------------------------------------------------- Discussion: the nonlinear spring
+
+LAWS = [(1.0, 0.5, 0.5), (2.0, 1.0, 0.0), (0.5, 0.5, 1.0)]  # (rho, a, b)
+
+
+@pytest.mark.parametrize("rho, a, b", LAWS)
+def test_nonlin_equilibrium_xi_balances_gravity_and_is_the_energy_minimum(rho, a, b):
+    from bounce.springs import PowerSpring
+
+    g = 0.01
+    xi = theory.nonlin_equilibrium_xi(g, rho, a)
+    assert xi < 0 and math.isclose(rho * abs(xi) ** (a + 1), g, rel_tol=1e-14)
+    spring = PowerSpring(rho=rho, a=a, b=b)
+    assert math.isclose(xi, spring.xi_eq(g), rel_tol=1e-15)
+    # at rest on the floor (psi = xi) eq. nonlin-energy is minimal at xi_eq, with the solver's E_m
+    def E(x):
+        return theory.nonlin_energy(x, 0.0, x, 0.0, g, rho, a)
+
+    assert math.isclose(E(xi), spring.energy_min(g), rel_tol=1e-14)
+    h = 1e-3 * abs(xi)
+    assert E(xi - h) > E(xi) and E(xi + h) > E(xi)
+
+
+def test_nonlin_forms_reduce_to_the_linear_ones():
+    g, mu = 0.01, 0.3
+    assert theory.nonlin_equilibrium_xi(g, 1.0, 0.0) == -g
+    xi, xid, psid = -0.02, 0.003, -0.001
+    assert math.isclose(theory.nonlin_energy(xi, xid, xi, psid, g, 1.0, 0.0), theory.tot_mech_energy(xi, xid, psid, g),
+                        rel_tol=1e-15)
+    assert theory.nonlin_energy_rate(xi, xid, mu, 0.0) == -2 * mu * xid**2  # eq. energy-dissipation
+    assert math.isclose(theory.nonlin_alpha_limit(g, mu, 1.0, 0.0, 0.0), mu / (3 * g), rel_tol=1e-15)
+    # the scaling of the Discussion: (gamma/rho)^(b/(a+1)) = |xi_eq|^b
+    assert math.isclose(theory.nonlin_alpha_limit(g, mu, 2.0, 0.5, 0.5),
+                        mu / (3 * g) * abs(theory.nonlin_equilibrium_xi(g, 2.0, 0.5)) ** 0.5, rel_tol=1e-14)
+
+
+@pytest.mark.parametrize("rho, a, b", LAWS)
+def test_nonlin_energy_rate_against_finite_differences(rho, a, b):
+    """dE/dt of eq. nonlin-energy along an mpmath solution of eq. eq-motion-nonlin-psi-xi (Taylor ODE solver)
+    equals -2 mu xi'^2 |xi|^b (central differences at 30 digits, h = 1e-6: error O(h^2) ~ 1e-12 relative)."""
+    with mpmath.workdps(30):
+        _check_nonlin_energy_rate(rho, a, b)
+
+
+def _check_nonlin_energy_rate(rho, a, b):
+    g, mu = 0.01, 0.3
+
+    def rhs(t, y):
+        _, psid, xi, xid = y
+        return [psid, -g, xid, -rho * xi * abs(xi) ** a - 2 * mu * xid * abs(xi) ** b]
+
+    sol = mpmath.odefun(rhs, 0, [mpmath.mpf("0.05"), mpmath.mpf("0.01"), mpmath.mpf("-0.06"), mpmath.mpf("0.02")])
+
+    def E(t):
+        psi, psid, xi, xid = sol(t)
+        return psid**2 / 2 + xid**2 / 2 + rho / (a + 2) * abs(xi) ** (a + 2) + g * psi
+
+    h = mpmath.mpf("1e-6")
+    for t in (mpmath.mpf("0.3"), mpmath.mpf("0.7")):
+        fd = (E(t + h) - E(t - h)) / (2 * h)
+        _, _, xi, xid = sol(t)
+        rate = theory.nonlin_energy_rate(float(xi), float(xid), mu, b)
+        assert rate < 0 and abs(float(fd) / rate - 1) < 1e-9
+        assert abs(float(fd) / (rate / 2) - 1) > 0.5  # the printed -mu xi'^2 |xi|^b is off by a factor 2

@@ -309,3 +309,34 @@ def geometric_map_collapse_time(u0: float, r: float, gamma: float) -> float:
     """Time from an impact at speed u0 to the collapse of a rigid ball with constant r (eqs.
     ``standard-model``, ``geometric-map``; flights 2 u/gamma): 2 r u0/(gamma (1 - r)); inf for r = 1."""
     return 2.0 * r * u0 / (gamma * (1.0 - r)) if r < 1.0 else math.inf
+
+
+# --------------------------------------------------------------------------- Discussion: the nonlinear spring
+
+def nonlin_equilibrium_xi(gamma: float, rho: float, a: float) -> float:
+    """xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``): rho |xi|^(a+1) = gamma, the spring holds the ball."""
+    return -((gamma / rho) ** (1.0 / (a + 1.0)))
+
+
+def nonlin_energy(xi, xidot, psi, psidot, gamma: float, rho: float, a: float):
+    """E of eq. ``nonlin-energy``: psi'^2/2 + xi'^2/2 + rho |xi|^(a+2)/(a+2) + gamma psi.
+
+    Direct evaluation (the independent side of the core's cancellation-free excess, as :func:`tot_mech_energy`)."""
+    return 0.5 * psidot**2 + 0.5 * xidot**2 + rho / (a + 2.0) * np.abs(xi) ** (a + 2.0) + gamma * psi
+
+
+def nonlin_energy_rate(xi, xidot, mu: float, b: float):
+    """dE/dt = -2 mu xi'^2 |xi|^b in flight (derived from eqs. ``nonlin-energy`` and ``eq-motion-nonlin-psi-xi``).
+
+    dE/dt = psi' psi'' + xi' xi'' + rho xi |xi|^a xi' + gamma psi'
+          = psi' (-gamma) + gamma psi' + xi' (-rho xi |xi|^a - 2 mu xi' |xi|^b) + rho xi |xi|^a xi'
+          = -2 mu xi'^2 |xi|^b.
+    The Discussion prints -mu xi'^2 |xi|^b (a factor 2 lost; for a = b = 0 it must reduce to eq.
+    ``energy-dissipation``, -2 mu xi'^2, which the printed form does not)."""
+    return -2.0 * mu * xidot**2 * np.abs(xi) ** b
+
+
+def nonlin_alpha_limit(gamma: float, mu: float, rho: float, a: float, b: float) -> float:
+    """alpha = lim alpha_n = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) of the map eq. ``mappa`` (Discussion), so that
+    n Xdot_n alpha -> 1 (Lemma Giorgio's); the linear spring (rho = 1, a = b = 0) gives mu/(3 gamma)."""
+    return mu / (3.0 * gamma) * (gamma / rho) ** (b / (a + 1.0))
