@@ -7,7 +7,6 @@ the floor (the states are built by integrating *backwards* from a dip bottom).
 
 from __future__ import annotations
 
-import math
 import os
 
 import numpy as np
@@ -20,8 +19,7 @@ from scipy.integrate import solve_ivp
 from bounce import Deviations, Parameters, State, simulate
 from bounce.model import InputError
 from bounce.power_events import energy_excess, simulate_power
-from bounce.power_flight import first_contact
-from bounce.power_series import DEGREE_LONG, law_array
+from bounce.power_series import law_array
 from bounce.springs.power import PowerSpring
 
 IMPACT = 0
