@@ -27,9 +27,11 @@ from .events import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import InputError, Parameters, State
 from .simulate import simulate
-from .stream import DEFAULT_CHUNK, check_memory, progress_enabled, simulate_chunked, stream_to_netcdf
+from .stream import (DEFAULT_CHUNK, check_memory, partial_path, progress_enabled, simulate_chunked,
+                     stream_to_netcdf)
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+EXIT_INTERRUPTED = 130  # 128 + SIGINT
 MAX_SAMPLES = 10_000_000
 
 XY_FORM = ("x0", "xdot0", "y0", "ydot0")
@@ -208,8 +210,13 @@ def _keep(args) -> dict | None:
 def _stream_command(args, params, initial, out) -> int:
     if args.dt_sample is not None:
         raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
-    result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
-                              _keep(args), args.resume, args.progress, args.compression)
+    try:
+        result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
+                                  _keep(args), args.resume, args.progress, args.compression)
+    except KeyboardInterrupt:
+        print(f"error: interrupted; {partial_path(out)} keeps the run up to its last chunk: "
+              "continue it with the same command and --resume", file=sys.stderr)
+        return EXIT_INTERRUPTED
     counts = [result["counts"][k] for k in KIND_NAMES]
     print(_summary(result["events"], counts, result["stop_reason"], result["t_end"], out)
           + f" ({result['records']} records)")
