@@ -60,5 +60,5 @@ rule all:
         "results/report/validation.md",
         "results/report/validation.html",
         [f"results/methods/{name}.nc" for name in STUDIES],
-        sweep_files(),
+        SWEEP_FILES,
     default_target: True

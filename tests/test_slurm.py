@@ -8,6 +8,7 @@ Needs a running SLURM whose node can run this checkout's Python (the one-node cl
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -56,10 +57,12 @@ def test_sweeps_on_slurm_equal_the_local_run(tmp_path):
     on_slurm, local = tmp_path / "slurm", tmp_path / "local"
     proc = _snakemake(on_slurm, "--profile", str(ROOT / "workflow" / "profiles" / "slurm"))
     _snakemake(local, "--cores", "2")
-    # every shard ran as a SLURM job (the plugin's per-job logs), not locally
-    shard_logs = list((on_slurm / ".snakemake" / "slurm_logs" / "rule_sweep_shard").rglob("*.log"))
-    assert len(shard_logs) == 4, proc.stderr[-2000:]
-    assert "submitted with SLURM jobid" in proc.stderr + proc.stdout
+    # every job ran as a SLURM job, not locally (the plugin deletes the logs of successful jobs; count its
+    # submission lines): 4 shards, 2 gathers, 2 figures
+    log = proc.stderr + proc.stdout
+    submitted = re.findall(r"has been submitted with SLURM jobid \d+ \(log: \S+/slurm_logs/(rule_sweep_\w+)/", log)
+    assert sorted(submitted) == ["rule_sweep_figure"] * 2 + ["rule_sweep_gather"] * 2 + ["rule_sweep_shard"] * 4, \
+        log[-2000:]
     for name in SWEEPS:
         a = (on_slurm / "results" / "sweeps" / f"{name}.nc").read_bytes()
         b = (local / "results" / "sweeps" / f"{name}.nc").read_bytes()

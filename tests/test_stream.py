@@ -183,3 +183,27 @@ def test_cli_progress_bar_on_request_only(tmp_path, capsys):
     assert capsys.readouterr().err == ""
     a, b = read_dataset(tmp_path / "a.nc"), read_dataset(tmp_path / "b.nc")
     assert all(np.array_equal(a[v].values, b[v].values) for v in a.data_vars)
+
+
+def test_cli_interrupted_stream_resumes(tmp_path, capsys, monkeypatch):
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
+            "--xidot0", "0", "--events", "5000", "--stream", "--chunk", "1000"]
+    real = stream.run_events
+    calls = {"n": 0}
+
+    def interrupted(*a):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise KeyboardInterrupt
+        return real(*a)
+
+    monkeypatch.setattr(stream, "run_events", interrupted)
+    out = tmp_path / "i.nc"
+    assert main([*args, "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert err.startswith("error: interrupted;") and "--resume" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists() and stream.partial_path(out).exists()
+    monkeypatch.setattr(stream, "run_events", real)
+    assert main([*args, "--out", str(out), "--resume"]) == 0
+    one = simulate(Parameters(0.01, 0.01), State.from_psi_xi(6.0, 0.0, 0.0, 0.0), max_events=5000)
+    _assert_same(read_trajectory(out), one)

@@ -132,3 +132,22 @@ def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     for var in ds.data_vars.values():
         assert var.attrs.get("long_name") and "units" in var.attrs
     assert png.stat().st_size > 10_000 and pdf.stat().st_size > 5_000
+
+
+@pytest.mark.parametrize("edit, key", [
+    (lambda s: s["asymptotic-atlas"].update(shards=0), "shards"),
+    (lambda s: s["asymptotic-atlas"]["mu"].update(min=-1.0), "min"),
+    (lambda s: s["asymptotic-atlas"].update(event=10), "event"),
+    (lambda s: s["contact-monte-carlo"].update(gamma=[1e-4, float("inf")]), "inf"),
+    (lambda s: s["contact-monte-carlo"].update(n_samples=2.5), "2.5"),
+    (lambda s: s.update(unknown_sweep={}), "unknown_sweep"),
+])
+def test_schema_rejects_bad_sweep_settings(edit, key):
+    import jsonschema
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    schema = yaml.safe_load((ROOT / "config" / "schema.yaml").read_text())
+    jsonschema.validate(config, schema)  # the shipped config is valid
+    edit(config["sweeps"])
+    with pytest.raises(jsonschema.ValidationError, match=key):
+        jsonschema.validate(config, schema)

@@ -45,7 +45,8 @@ from .model import (
 )
 from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
 from .springs import spring_from_spec
-from .stream import DEFAULT_CHUNK, check_memory, progress_enabled, simulate_chunked, stream_to_netcdf
+from .stream import (DEFAULT_CHUNK, check_memory, partial_path, progress_enabled, simulate_chunked,
+                     stream_to_netcdf)
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -289,8 +290,13 @@ def _keep(args) -> dict | None:
 def _stream_command(args, params, initial, out) -> int:
     if args.dt_sample is not None:
         raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
-    result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
-                              _keep(args), args.resume, args.progress, args.compression)
+    try:
+        result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
+                                  _keep(args), args.resume, args.progress, args.compression)
+    except KeyboardInterrupt:
+        print(f"error: interrupted; {partial_path(out)} keeps the run up to its last chunk: "
+              "continue it with the same command and --resume", file=sys.stderr)
+        return EXIT_SIGINT
     counts = [result["counts"][k] for k in KIND_NAMES]
     print(_summary(result["events"], counts, result["stop_reason"], result["t_end"], out)
           + f" ({result['records']} records)")

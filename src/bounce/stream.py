@@ -41,6 +41,8 @@ BYTES_PER_EVENT_STREAM = BYTES_PER_EVENT + 24
 DEFAULT_CHUNK = 1 << 20
 #: most events a streamed run takes: memory is bounded by the chunk, time is the user's (1e12 ~ a day)
 MAX_STREAM_EVENTS = 10**12
+FILE_CHUNK = 1 << 16  # elements per netCDF chunk of a streamed file
+CHUNK_CACHE_BYTES = 2 * 8 * FILE_CHUNK  # per variable: the chunk being filled and one more
 BASELINE_BYTES = 250 * 2**20  # interpreter, numpy, numba, xarray, netCDF4
 
 
@@ -196,7 +198,7 @@ def _create(path: Path, params, initial, settings: dict, keep: dict | None, chun
         ds.attrs["events_kept"] = "first {first} and {log_samples} log-spaced after them".format(**keep)
     ds.attrs.update(stream_done=0, stream_records=0, stream_carry=np.zeros(CARRY_SIZE),
                     stream_chunk=chunk)
-    size = min(chunk, 1 << 16)
+    size = min(chunk, FILE_CHUNK)
     encoding = {name: {"_FillValue": None, "chunksizes": (size,), **CODECS[compression]} for name in ds.variables}
     ds.to_netcdf(path, mode="w", format="NETCDF4", engine="netcdf4", encoding=encoding, unlimited_dims=["event"])
 
@@ -226,6 +228,8 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
     counts = np.zeros(len(KIND_NAMES), dtype=np.int64)
     with netCDF4.Dataset(part, "a") as nc:
         nc.set_auto_maskandscale(False)
+        for var in nc.variables.values():  # HDF5's default chunk cache (MBs per variable) would grow with the file
+            var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61, preemption=1.0)
         a = nc.__dict__
         if resume:
             mine = {"gamma": params.gamma, "mu": params.mu, "max_events": max_events, "t_max": float(t_max),

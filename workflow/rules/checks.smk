@@ -18,6 +18,9 @@ rule check:
         pdf="results/checks/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(config["checks"][w.name]),
+    resources:
+        mem_mb=4000,
+        runtime=60,
     log:
         "results/logs/checks/{name}.log",
     benchmark:
@@ -40,6 +43,9 @@ rule report:
         html=report("results/report/validation.html", caption="../report/validation.rst", category="Validation report"),
     params:
         spec=as_json(config["report"]),
+    resources:
+        mem_mb=1000,
+        runtime=10,
     log:
         "results/logs/report.log",
     benchmark:

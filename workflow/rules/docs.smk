@@ -11,6 +11,9 @@ rule thumbnails:
         [f"results/figures/fig-{name}.png" for name in FIGURES],
     output:
         [f"docs/thumbnails/fig-{name}.png" for name in FIGURES],
+    resources:
+        mem_mb=1000,
+        runtime=10,
     log:
         "results/logs/docs/thumbnails.log",
     shell:

@@ -10,6 +10,9 @@ rule figure:
         pdf="results/figures/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(FIGURES[w.name][1]),
+    resources:
+        mem_mb=2000,
+        runtime=10,
     log:
         "results/logs/figures/{name}.log",
     benchmark:

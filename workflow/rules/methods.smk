@@ -10,6 +10,9 @@ rule study:
         pdf="results/methods/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(STUDIES[w.name]),
+    resources:
+        mem_mb=4000,
+        runtime=60,
     log:
         "results/logs/methods/{name}.log",
     benchmark:

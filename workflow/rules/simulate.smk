@@ -7,6 +7,9 @@ rule simulate:
         "results/data/{scene}.nc",
     params:
         spec=lambda w: as_json(config["scenes"][w.scene]),
+    resources:
+        mem_mb=2000,
+        runtime=20,
     log:
         "results/logs/simulate/{scene}.log",
     benchmark:

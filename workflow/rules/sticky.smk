@@ -8,6 +8,9 @@ rule sticky_run:
         "results/data/sticky/eps{eps}.nc",
     params:
         spec=sticky_run_spec,
+    resources:
+        mem_mb=1000,
+        runtime=10,
     log:
         "results/logs/sticky/eps{eps}.log",
     benchmark:
@@ -24,6 +27,9 @@ rule sticky_convergence:
         "results/data/sticky-convergence.nc",
     params:
         spec=as_json({"samples": STICKY["samples"]}),
+    resources:
+        mem_mb=2000,
+        runtime=10,
     log:
         "results/logs/sticky/convergence.log",
     benchmark:
@@ -38,6 +44,9 @@ rule sticky_inference:
         "results/data/sticky-inference.nc",
     params:
         spec=as_json({k: STICKY[k] for k in ("gamma", "mu", "ydot0", "t_c_paper", "inference")}),
+    resources:
+        mem_mb=2000,
+        runtime=30,
     log:
         "results/logs/sticky/inference.log",
     benchmark:

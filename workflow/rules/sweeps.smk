@@ -3,29 +3,15 @@ each using all its cores (`threads`), gathered into results/sweeps/<name>.nc, an
 file alone into results/sweeps/fig-<name>.{png,pdf}.  On a cluster (workflow/profiles/slurm) every
 shard is one SLURM job with the cores, memory and run time declared below."""
 
+import importlib
+
 SWEEPS = config.get("sweeps", {})
-
-
-def sweep_spec(name):
-    """A sweep's config slice without `threads` (the cores of a job do not change its numbers)."""
-    return {k: v for k, v in SWEEPS[name].items() if k != "threads"}
-
-
-def sweep_shards(name):
-    n = int(SWEEPS[name]["shards"])
-    return [f"results/sweeps/{name}/shard-{k}-of-{n}.nc" for k in range(n)]
-
-
-def sweep_memory_mb(wildcards, threads):
-    """workers x the sweep's per-worker peak (bounce.sweeps: memory_mb), plus the job's own process."""
-    from bounce.sweeps import registry
-
-    return threads * registry()[wildcards.name].memory_mb(sweep_spec(wildcards.name)) + 500
-
-
-def sweep_files():
-    return [f"results/sweeps/{name}.nc" for name in SWEEPS] + [
-        f"results/sweeps/fig-{name}.{ext}" for name in SWEEPS for ext in ("png", "pdf")]
+# a sweep's config slice without `threads` (the cores of a job do not change its numbers)
+SWEEP_SPEC = {name: {k: v for k, v in spec.items() if k != "threads"} for name, spec in SWEEPS.items()}
+SWEEP_SHARDS = {name: [f"results/sweeps/{name}/shard-{k}-of-{int(spec['shards'])}.nc" for k in range(int(spec["shards"]))]
+                for name, spec in SWEEPS.items()}
+SWEEP_FILES = [f"results/sweeps/{name}.nc" for name in SWEEPS] + [
+    f"results/sweeps/fig-{name}.{ext}" for name in SWEEPS for ext in ("png", "pdf")]
 
 
 rule sweep_shard:
@@ -33,10 +19,12 @@ rule sweep_shard:
     output:
         "results/sweeps/{name}/shard-{shard}-of-{shards}.nc",
     params:
-        spec=lambda w: as_json(sweep_spec(w.name)),
+        spec=lambda w: as_json(SWEEP_SPEC[w.name]),
     threads: lambda w: int(SWEEPS[w.name].get("threads", 2))
     resources:
-        mem_mb=sweep_memory_mb,
+        # workers x the sweep's per-worker peak (bounce.sweeps: memory_mb), plus the job's own process
+        mem_mb=lambda w, threads: threads * importlib.import_module("bounce.sweeps").registry()[w.name].memory_mb(
+            SWEEP_SPEC[w.name]) + 500,
         runtime=lambda w: int(SWEEPS[w.name].get("shard_minutes", 30)),
     log:
         "results/logs/sweeps/{name}/shard-{shard}-of-{shards}.log",
@@ -53,11 +41,11 @@ rule sweep_shard:
 rule sweep_gather:
     """Every shard of a sweep -> results/sweeps/<name>.nc (the same bytes whatever ran the shards)."""
     input:
-        lambda w: sweep_shards(w.name),
+        lambda w: SWEEP_SHARDS[w.name],
     output:
         "results/sweeps/{name}.nc",
     params:
-        spec=lambda w: as_json(sweep_spec(w.name)),
+        spec=lambda w: as_json(SWEEP_SPEC[w.name]),
     resources:
         mem_mb=2000,
         runtime=10,
@@ -78,7 +66,7 @@ rule sweep_figure:
         png=report("results/sweeps/fig-{name}.png", caption="../report/sweep.rst", category="Sweeps"),
         pdf="results/sweeps/fig-{name}.pdf",
     params:
-        spec=lambda w: as_json(sweep_spec(w.name)),
+        spec=lambda w: as_json(SWEEP_SPEC[w.name]),
     resources:
         mem_mb=1000,
         runtime=10,
@@ -94,4 +82,4 @@ rule sweep_figure:
 rule sweeps:
     """Every sweep and its figure: `snakemake --cores 2 sweeps` (or a cluster profile)."""
     input:
-        sweep_files(),
+        SWEEP_FILES,

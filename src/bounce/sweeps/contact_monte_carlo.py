@@ -146,8 +146,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     r = np.geomspace(1e-4, 1e-1, 10)
     axes[0].plot(r, 0.5 * r**2, "k:", label=r"$\propto r^2$ (grazing dip)")
     axes[1].axvline(1.0, color="k", ls="--", lw=0.8, label="window: tangential below")
-    for ax in axes:
-        ax.legend(loc="lower right")
+    axes[0].legend(loc="upper left")
+    axes[1].legend(loc="lower right")
     a = ds.attrs
     fig.suptitle(f"Theorem contact-non-generic: {a['n_samples']:,} random states x {a['events']} events; "
                  f"grazing {a['n_grazing']}, sticky_start {a['n_sticky_start']}", fontsize=8)
