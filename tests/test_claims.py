@@ -374,6 +374,17 @@ def test_nongeneric_verdicts_on_a_small_sample():
     assert row(rows, "contact-non-generic/nowhere-dense").verdict == NOT_CHECKABLE
 
 
+def test_finitely_many_grazings_flips_without_damping():
+    """mu = 0 conserves energy: E never falls below E_min, so the run cannot show the theorem's mechanism."""
+    sp = spec("contact-non-generic", swish_params=[[0.01, 0.0]], swish_acc_over_gamma=[1.0],
+              swish_ydot_over_gamma=[0.0], swish_events=300)
+    g = registry()["contact-non-generic"]
+    damped = g.verdicts(g.measure(spec("contact-non-generic"), []), spec("contact-non-generic"),
+                        only="finitely-many-grazings")
+    undamped = g.verdicts(g.measure(sp, []), sp, only="finitely-many-grazings")
+    assert damped[0].verdict == REPRODUCED and undamped[0].verdict == NOT_REPRODUCED
+
+
 def test_nongeneric_claims_measure_lazily():
     """One claim computes only what it reads: the speed scan does not run the Monte Carlo."""
     g = registry()["contact-non-generic"]

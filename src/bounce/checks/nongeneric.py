@@ -53,7 +53,7 @@ from ..events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
 from ..fitting import tail_exponent
 from ..model import Parameters
 from ..simulate import simulate
-from ..theory import contact_derivatives, sticky_onset
+from ..theory import E_min, contact_derivatives, min_sticky_energy, sticky_onset
 from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge, variable
 
 NAME = "contact-non-generic"
@@ -105,6 +105,38 @@ def constructed(spec: dict, kind: str):
     return dict(gamma=gamma, mu=mu, size=size, first_kind=first_kind, second_kind=second_kind, starts=starts, **rows)
 
 
+def swish_runs(spec: dict) -> dict:
+    """Theorem Finite-number-swishes: runs that start by grazing (constructed as above), followed to rest.
+
+    Per (gamma, mu) of ``swish_params``, grazings with x''/gamma in ``swish_acc_over_gamma`` and
+    Ydot/gamma in ``swish_ydot_over_gamma`` (Ydot = 2 xi' at the contact, eta = 2 gamma - 2 mu xi' + x'');
+    each simulated for at most ``swish_events`` events, until E - E_m < ``swish_energy_stop`` (E_min - E_m).  Recorded per run: the grazing and sticky events, their
+    E - E_m, and the first event after which E - E_m < E_min - E_m (Lemma Min-sticky-energy), past which
+    the theorem's proof forbids any further grazing.
+    """
+    runs = []
+    for g, mu in (tuple(map(float, p)) for p in spec["swish_params"]):
+        e_threshold = min_sticky_energy(g, mu) - E_min(g)  # E_min - E_m = 2 gamma^2/(1 + 2 mu^2)
+        for acc in spec["swish_acc_over_gamma"]:
+            for ydot in spec["swish_ydot_over_gamma"]:
+                with mp.workdps(40):
+                    a_pre = mpf(ydot) * g / 2
+                    eta = 2 * mpf(g) - 2 * mpf(mu) * a_pre + mpf(acc) * g
+                    start, T, *_ = construct_contact(g, mu, a_pre, eta, 0, 0.5)
+                tr = simulate(Parameters(g, mu), start, max_events=int(spec["swish_events"]),
+                              energy_stop=float(spec["swish_energy_stop"]) * e_threshold)
+                anomalous = np.flatnonzero((tr.kind == GRAZING) | (tr.kind == STICKY_START))
+                below = np.flatnonzero(tr.energy_excess < e_threshold)
+                runs.append(dict(gamma=g, mu=mu, acc=float(acc), ydot=float(ydot), T=T,
+                                 first_kind=int(tr.kind[0]), n_graze=int((tr.kind == GRAZING).sum()),
+                                 n_anomalous=int(anomalous.size),
+                                 e_anomalous=tr.energy_excess[anomalous] / e_threshold,
+                                 last_anomalous=int(anomalous[-1]) if anomalous.size else -1,
+                                 first_below=int(below[0]) if below.size else -1,
+                                 e0=float(tr.energy_excess[0]) / e_threshold, events=len(tr)))
+    return dict(runs=runs)
+
+
 def speed_scan(spec: dict):
     """Arrival speed v = ratio * v_tol on the sticky line: which kind does the classifier give?"""
     g, m = spec["scan_gamma_mu"]
@@ -146,6 +178,10 @@ class Measurements:
     @cached_property
     def graze(self) -> dict:
         return constructed(self.spec, "grazing")
+
+    @cached_property
+    def swish(self) -> dict:
+        return swish_runs(self.spec)
 
     @cached_property
     def scan(self) -> dict:
@@ -325,6 +361,33 @@ def constructed_grazings(m, spec) -> Verdict:
         measured=msg,
         tolerance="|t - T| <= 2 min(delta2, delta3), delta2 = sqrt(2 xn/|x''|) (classifier window, doubled as above)",
         verdict=judge(bad.size == 0))
+
+
+@claim(CLAIMS, "finitely-many-grazings", PAPER, "thm:Finite-number-swishes")
+def finitely_many_grazings(m, spec) -> Verdict:
+    runs = m.swish["runs"]
+    started = [r["first_kind"] == GRAZING for r in runs]
+    reached = [r["first_below"] >= 0 for r in runs]
+    # every grazing/sticky event at E >= E_min (the proof's energy argument) and none after E < E_min
+    e_low = min((float(np.min(r["e_anomalous"])) for r in runs if r["n_anomalous"]), default=math.inf)
+    after = [r["last_anomalous"] > r["first_below"] >= 0 for r in runs]
+    tol = 1e-9  # rounding of (E - E_m)/(E_min - E_m) ~ 1 for states known to float64 (as lem:Min-sticky-energy)
+    ok = all(started) and all(reached) and not any(after) and e_low >= 1 - tol
+    return Verdict(
+        claim="Any initial condition generates a solution with at most a finite number of grazings",
+        paper_ref="thm:Finite-number-swishes (proof: no collapse, and E falls below E_min of lem:Min-sticky-energy)",
+        computed=f"{len(runs)} runs constructed to graze at t = T (x''/gamma in {spec['swish_acc_over_gamma']}, "
+                 f"Ydot/gamma in {spec['swish_ydot_over_gamma']}, (gamma, mu) in {spec['swish_params']}), "
+                 f"until E - E_m < {spec['swish_energy_stop']} (E_min - E_m) (at most {spec['swish_events']} events): grazings, their energy, the event after which E < E_min",
+        expected="each run starts with a grazing, E falls below E_min after finitely many events, every grazing "
+                 "(or sticky onset) has E >= E_min and none follows the fall below E_min",
+        measured=f"{sum(started)}/{len(runs)} start with a grazing; grazings per run "
+                 f"{[r['n_graze'] for r in runs]}; E(0)/E_min (excess over E_m) up to "
+                 f"{max(r['e0'] for r in runs):.3g}; E < E_min after events {[r['first_below'] for r in runs]} "
+                 f"(-1: not within the run); min (E - E_m)/(E_min - E_m) at a grazing {e_low:.6g}; "
+                 f"runs with a grazing after E < E_min: {sum(after)}",
+        tolerance=f"exact counts; energy ratio >= 1 - {tol:g} (rounding of E - E_m for float64 states)",
+        verdict=judge(ok))
 
 
 @claim(CLAIMS, "classifier-switch", SELF_TEST, SUBJECT)
