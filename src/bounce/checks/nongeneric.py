@@ -51,7 +51,7 @@ from .. import reference
 from ..anomalies import construct_contact, monte_carlo, sample_parameters
 from ..events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
 from ..fitting import tail_exponent
-from ..model import Parameters
+from ..model import Deviations, Parameters
 from ..simulate import simulate
 from ..theory import E_min, contact_derivatives, min_sticky_energy, sticky_onset
 from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge, variable
@@ -137,6 +137,42 @@ def swish_runs(spec: dict) -> dict:
     return dict(runs=runs)
 
 
+def near_grazing(spec: dict) -> dict:
+    """Contact speeds of starts near a constructed grazing: the height lowered by h on a midpoint grid of [0, H].
+
+    Per (gamma, mu) of ``swish_params``: the exponent k of measure{h : |Xdot_1(h)| < delta} ~ delta^k from the
+    ranked speeds v_(j), j = lo..hi of ``near_fit`` (the measure below v_(j) is j - 1/2 grid cells), over the whole
+    range and over its lower and upper halves (in log j), and the fit extrapolated to the classifier's window v_tol.
+    """
+    n = int(spec["near_n"])
+    lo, hi = (int(v) for v in spec["near_fit"])
+    mid = int(round(math.sqrt(lo * hi)))
+    out = {key: [] for key in ("k", "k_low", "k_high", "decades", "count_at_window")}
+    for g, mu in (tuple(map(float, p)) for p in spec["swish_params"]):
+        with mp.workdps(40):
+            eta = 2 * mpf(g) + mpf(spec["near_acc_over_gamma"]) * g
+            start, T, acc, jerk, scale = construct_contact(g, mu, mpf(0), eta, 0, 0.5)
+        H = float(spec["near_height_over_gamma"]) * g
+        h = -H * (np.arange(n) + 0.5) / n  # lowered starts; raised ones miss the floor near T (no slow contact there)
+        v = np.sort([abs(simulate(Parameters(g, mu), Deviations(start.x + dh, start.xdot, start.xidot, start.eta),
+                                  max_events=1).xdot[0]) for dh in h])
+        rank = np.arange(1, n + 1) - 0.5
+
+        def slope(a, b):
+            return float(np.polyfit(np.log(v[a - 1:b]), np.log(rank[a - 1:b]), 1)[0])
+
+        k = slope(lo, hi)
+        c = float(np.exp(np.mean(np.log(rank[lo - 1:hi]) - k * np.log(v[lo - 1:hi]))))
+        out["k"].append(k)
+        out["k_low"].append(slope(lo, mid))
+        out["k_high"].append(slope(mid, hi))
+        out["decades"].append(float(np.log10(v[hi - 1] / v[lo - 1])))
+        out["count_at_window"].append(c * contact_window(scale, acc, jerk)[1] ** k)
+    out = {key: np.array(val) for key, val in out.items()}
+    out["decades"] = float(out["decades"].min())
+    return out
+
+
 def speed_scan(spec: dict):
     """Arrival speed v = ratio * v_tol on the sticky line: which kind does the classifier give?"""
     g, m = spec["scan_gamma_mu"]
@@ -184,6 +220,10 @@ class Measurements:
         return swish_runs(self.spec)
 
     @cached_property
+    def near(self) -> dict:
+        return near_grazing(self.spec)
+
+    @cached_property
     def scan(self) -> dict:
         return speed_scan(self.spec)
 
@@ -220,11 +260,12 @@ CLAIMS: list = []
 SUBJECT = "thm:contact-non-generic"
 
 
-@claim(CLAIMS, "no-sticky-start", PAPER, SUBJECT)
+@claim(CLAIMS, "no-sticky-start", SELF_TEST, SUBJECT)
 def no_sticky_start(m, spec) -> Verdict:
     n_sticky, n_ev = int(m.mc["counts"][:, STICKY_START].sum()), int(m.mc["counts"].sum())
     return Verdict(
-        claim="Generic initial conditions never start a sticky event (contacts are instantaneous)",
+        claim="The classifier reports no sticky event in generic runs (a self-test: a zero-measure set is never "
+              "sampled, so this row checks for spurious classifications, not the theorem; see near-grazing-measure)",
         paper_ref="thm:contact-non-generic, eq. sticky-condition",
         computed=f"Monte-Carlo: {len(m.mc['gamma'])} random initial conditions (seed {spec['seed']}; gamma "
                  f"log-uniform, mu under/critically/over-damped, (E-E_m)/gamma^2 log-uniform), "
@@ -237,11 +278,11 @@ def no_sticky_start(m, spec) -> Verdict:
         verdict=judge(n_sticky == 0))
 
 
-@claim(CLAIMS, "no-grazing", PAPER, SUBJECT)
+@claim(CLAIMS, "no-grazing", SELF_TEST, SUBJECT)
 def no_grazing(m, spec) -> Verdict:
     n_graze, n_ev = int(m.mc["counts"][:, GRAZING].sum()), int(m.mc["counts"].sum())
     return Verdict(
-        claim="Generic initial conditions never graze the floor",
+        claim="The classifier reports no grazing in generic runs (a self-test, as no-sticky-start)",
         paper_ref="thm:contact-non-generic, eq. swishes, thm:Finite-number-swishes",
         computed="same Monte-Carlo: count of grazing events",
         expected="0",
@@ -250,20 +291,33 @@ def no_grazing(m, spec) -> Verdict:
         verdict=judge(n_graze == 0))
 
 
-@claim(CLAIMS, "no-atom-at-zero-speed", PAPER, SUBJECT)
-def no_atom_at_zero_speed(m, spec) -> Verdict:
-    mc, tl = m.mc, m.tails
-    i_min = int(np.nanargmin(mc["min_ratio"]))
+@claim(CLAIMS, "near-grazing-measure", PAPER, SUBJECT)
+def near_grazing_measure(m, spec) -> Verdict:
+    nr, tl, mc = m.near, m.tails, m.mc
+    k, k_lo, k_hi = nr["k"], nr["k_low"], nr["k_high"]
+    tol = float(spec["near_exponent_tol"])
+    lo, hi = spec["near_fit"]
+    ok = bool(np.all(np.abs(k - 2.0) <= tol) and np.all(np.abs(k_lo - k_hi) <= tol))
     return Verdict(
-        claim="Zero contact speed has zero probability: no atom at |Xdot_n| = 0",
-        paper_ref="thm:contact-non-generic (zero Lebesgue measure)",
-        computed=f"{mc['n_contacts']} impacts; low tail N(|Xdot_n|/v_ref < r) = C r^p fitted through the "
-                 f"ranked smallest ratios k = {tl.lo}..{tl.hi}; v_ref = launch speed of the flight ending at n",
-        expected="p > 0 (a finite count at r -> 0 would be an atom: a positive-measure set of zero-speed contacts)",
-        measured=f"p = {tl.p_ratio:.2f} +- {tl.p_ratio_err:.2f}; smallest ratio {mc['min_ratio'][i_min]:.3g} at "
-                 + m.where(i_min, "min_ratio_at"),
-        tolerance="p - 3 sigma > 0 (3 standard errors of the least-squares slope)",
-        verdict=judge(tl.p_ratio - 3 * tl.p_ratio_err > 0))
+        claim="Zero-speed contacts have zero measure: the measure of states whose contact speed is below delta "
+              "vanishes as delta -> 0",
+        paper_ref="thm:contact-non-generic (zero Lebesgue measure), eq. swishes",
+        computed=f"around a constructed grazing (x''/gamma = {spec['near_acc_over_gamma']}, Ydot = 0) for (gamma, mu) "
+                 f"in {spec['swish_params']}: start height lowered by h on a {spec['near_n']}-point midpoint grid of "
+                 f"[0, H] (raised starts miss the floor there), H = {spec['near_height_over_gamma']:g} gamma; the measure of {{h: |Xdot_1(h)| < delta}} "
+                 f"~ delta^k fitted through the ranked speeds k = {lo}..{hi} (count - 1/2 = measure / cell)",
+        expected="k = 2 (square-root fold at a grazing: Xdot^2 = 2 x'' |h| to first order, so the measure is ~ delta^2 "
+                 "and extrapolates to 0; a positive-measure set of zero-speed contacts would give k = 0)",
+        measured="k = " + ", ".join(f"{v:.5f}" for v in k) + "; lower/upper half of the fit range: "
+                 + ", ".join(f"{a:.5f}/{b:.5f}" for a, b in zip(k_lo, k_hi))
+                 + f"; delta spans {nr['decades']:.2g} decade(s), the measure {math.log10((hi - 0.5) / (lo - 0.5)):.2g}; "
+                 f"extrapolated measure at the classifier's window "
+                 f"v_tol: {np.max(nr['count_at_window']):.2g} grid cells; Monte-Carlo ({mc['n_contacts']} impacts) "
+                 f"low-tail exponent of |Xdot_n|/v_ref {tl.p_ratio:.2f} +- {tl.p_ratio_err:.2f} (not yet in the "
+                 f"asymptotic range: smallest ratio {np.nanmin(mc['min_ratio']):.2g})",
+        tolerance=f"|k - 2| <= {tol:g} and the two half-range slopes agree to {tol:g}: the first-order fold is "
+                  f"exact up to O(h/H0) corrections, and over the fit range the half-range slopes differ by < 1e-3",
+        verdict=judge(ok))
 
 
 @claim(CLAIMS, "impacts-outside-window", SELF_TEST, SUBJECT)
