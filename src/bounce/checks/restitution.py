@@ -27,7 +27,8 @@ rule (eq. collision-rule), psi'(t_n^-) = xi'(t_n^+) = xidot[n-1].
     macroscopic bounce is the ratio of successive landing speeds: Xdot_{2m+1}/Xdot_{2m-1} for
     the initial run of double impacts (contact flight within ``double_band`` of T_xi), and
     Xdot_{n+1}/Xdot_n for every impact after it (each flight is then a bounce, as in eq.
-    restituzione).  The band [u1, u2] spans the bounces where |r/r_our - 1| > ``our_r_threshold``.
+    restituzione).  The band [u1, u2] spans the bounces where the dissipated fraction is off,
+    |(1 - r)/(1 - r_our) - 1| > ``our_r_threshold`` (1 - r, not r: r ~ 1 - 1e-4 at small u).
     In terms of the rigid ball's own speed (the centre of mass, flight 2u/gamma) the small-u
     branch is checked too: there u_COM = gamma tau_n/2 = Xdot_n/2, so the law reads 1 - 2 mu u/(3 gamma).
 """
@@ -119,13 +120,15 @@ def our_r_test(ds, dbl, cfg) -> dict:
     r = np.concatenate([rd, rs])
     kind_b = np.concatenate([np.ones(ud.size, dtype=np.int8), np.zeros(us.size, dtype=np.int8)])
     ro = our_r(u, gamma, mu)
-    err = r / ro - 1.0
+    # judged on the dissipated fraction 1 - r (the quantity eq. our-r models; r itself is ~1 - 1e-4 at small u,
+    # where a relative error of r says nothing); the error of r itself is kept for comparison
+    err = (1.0 - r) / (1.0 - ro) - 1.0
     thr = cfg["our_r_threshold"]
     bad = np.abs(err) > thr
     u1, u2 = (float(u[bad].min()), float(u[bad].max())) if bad.any() else (math.nan, math.nan)
-    diss = (1.0 - r) / (1.0 - ro) - 1.0
-    badd = np.abs(diss) > cfg["dissipation_threshold"]
-    d1, d2 = (float(u[badd].min()), float(u[badd].max())) if badd.any() else (math.nan, math.nan)
+    err_r = r / ro - 1.0
+    bad_r = np.abs(err_r) > thr
+    d1, d2 = (float(u[bad_r].min()), float(u[bad_r].max())) if bad_r.any() else (math.nan, math.nan)
     # small-u branch in the centre-of-mass convention: u_COM = gamma tau_n / 2 of every flight
     # small-u branch: q_x = (1 - Xdot_(n+1)/Xdot_n)/(mu Xdot_n/(3 gamma)) (the map quantity of check
     # main-theorem) and, in the centre-of-mass convention u = gamma tau_n/2, r = tau_(n+1)/tau_n,
@@ -193,7 +196,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
             com_r=("com_sample", o["plot"]["rcom"], {"long_name": "tau_(n+1)/tau_n", "units": "1"}),
         )
         data.attrs.update(r_theory=d["r0"], T_xi=d["Txi"], u_c=o["uc"], band_u1=o["u1"], band_u2=o["u2"],
-                          dissipation_band_u1=o["d1"], dissipation_band_u2=o["d2"], slope_com=o["slope_com"],
+                          r_band_u1=o["d1"], r_band_u2=o["d2"], slope_com=o["slope_com"],
                           slope_x=o["slope_x"], plateau_length=P, double_run=d["run_len"],
                           rest_gamma=d["gamma"], rest_mu=d["mu"], rest_scene=name,
                           our_r_threshold=spec["our_r_threshold"])
@@ -289,17 +292,19 @@ def our_r_band(m, spec) -> dict:
         return {}
     o, thr = m.o, spec["our_r_threshold"]
     return {m.name: Verdict(
-        f"Eq. our-r is accurate for large and small impact speeds (within {thr:.0%}) and fails in an "
+        f"Eq. our-r is accurate for large and small impact speeds (1 - r within {thr:.0%}) and fails in an "
         "intermediate band (under-damped spring)", "eq. our-r, sec. Discussion",
         f"{m.ctx}: restitution per macroscopic bounce, r = ratio of successive landing speeds u = Xdot "
-        f"({m.d['run_len']} double-impact bounces, then every impact); band = range of u where |r/r_our - 1| > {thr:g}",
-        "a bounded band [u1, u2] with r within the threshold outside it",
+        f"({m.d['run_len']} double-impact bounces, then every impact); band = range of u where the dissipated "
+        f"fraction is off, |(1 - r)/(1 - r_our) - 1| > {thr:g}",
+        "a bounded band [u1, u2] with 1 - r within the threshold outside it",
         f"band [u1, u2] = [{o['u1']:.3g}, {o['u2']:.3g}] = [{o['u1'] / o['uc']:.3g}, {o['u2'] / o['uc']:.3g}] u_c "
-        f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces); max error above u2: "
-        f"{o['max_err_above']:.2g}, below u1: {o['max_err_below']:.2g}; 1 - r off by > "
-        f"{spec['dissipation_threshold']:.0%} in [{o['d1']:.3g}, {o['d2']:.3g}]",
-        f"threshold {thr:g} (brief); reproduced if failures are confined to a band strictly inside the "
-        "simulated speeds, with correct r on both sides",
+        f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces; simulated u in [{np.min(o['u']):.3g}, "
+        f"{np.max(o['u']):.3g}]); max error of 1 - r above u2: {o['max_err_above']:.2g}, below u1: "
+        f"{o['max_err_below']:.2g}; judged on r itself (as before) the band would be [{o['d1']:.3g}, {o['d2']:.3g}]",
+        f"{thr:g} relative on 1 - r (the brief's 5 %, applied to the dissipated fraction: where 1 - r ~ 1e-4 a 5 % "
+        "band on r would accept any law); reproduced if failures are confined to a band strictly inside the "
+        "simulated speeds, with 1 - r correct on both sides",
         judge(bool(np.isfinite(o["u1"]) and o["u1"] > np.min(o["u"]) and o["u2"] < np.max(o["u"])
                    and (o["max_err_above"] <= thr) and (o["max_err_below"] <= thr))))}
 
@@ -418,7 +423,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         uu = np.geomspace(u.min(), u.max(), 400)
         for ax in (a5, a6):
             ax.axvspan(ds.attrs["band_u1"], ds.attrs["band_u2"], color="r", alpha=0.1,
-                       label=r"$|r/r_{our}-1|>%g$" % ds.attrs["our_r_threshold"])
+                       label=r"$|(1-r)/(1-r_{our})-1|>%g$" % ds.attrs["our_r_threshold"])
         a5.semilogx(u[~dbl], r[~dbl], ".", ms=1, color="0.4", label="single-impact bounces")
         a5.semilogx(u[dbl], r[dbl], "o", ms=3, color="C0", label="double-impact bounces")
         a5.semilogx(uu, our_r(uu, g, mu), "C3-", lw=1, label="eq. our-r")
