@@ -94,14 +94,24 @@ def overdamped(ds, cfg) -> dict:
     bad = np.nonzero(~ok)[0]
     i0 = 0 if bad.size == 0 else int(bad[-1]) + 1
     n = np.arange(1, len(tau))
-    q = n * tau[1:] * mu / 3.0
-    badq = np.nonzero(~(np.abs(q - 1.0) < cfg["transient"]))[0]
-    n10 = float(n[badq[-1] + 1]) if badq.size and badq[-1] + 1 < n.size else (1.0 if not badq.size else math.inf)
+    q = n * tau[1:] * mu / 3.0  # tau_n / (3/(mu n)), Theorem main_thm
+    q_x = n * np.abs(xd[:-1]) * mu / (3.0 * gamma)  # Xdot_n / (3 gamma/(mu n)), proof of Theorem main_thm
+    n10 = settled(n, q, cfg["transient"])
     r_eff = gamma * tau[1] / (2.0 * abs(xi[0]))  # psi'(t_1^-) = xidot[0]
     return {"gamma": gamma, "mu": mu, "w": w, "n0": i0 + 1, "n_min": int(np.argmin(w)) + 1,
             "sign_changes": int(np.sum(np.diff(np.sign(w)) != 0)),
             "slope_changes": int(np.sum(np.diff(np.sign(np.diff(w))) != 0)),
-            "n10": n10, "r_eff": r_eff, "n_events": len(w)}
+            "n10": n10, "r_eff": r_eff, "n_events": len(w),
+            "n_strict_tau": settled(n, q, cfg["transient_strict"]), "n_strict_xdot": settled(n, q_x, cfg["transient_strict"]),
+            "n_loose_xdot": settled(n, q_x, cfg["transient"])}
+
+
+def settled(n, q, tol: float) -> float:
+    """First n after which |q_n - 1| < tol for every later recorded impact (1 if always, inf if never)."""
+    bad = np.nonzero(~(np.abs(q - 1.0) < tol))[0]
+    if not bad.size:
+        return 1.0
+    return float(n[bad[-1] + 1]) if bad[-1] + 1 < n.size else math.inf
 
 
 def our_r_test(ds, dbl, cfg) -> dict:
@@ -368,9 +378,35 @@ def overdamped_no_transient(m, spec) -> dict:
     return {m.od_name: Verdict(
         "The over-damped system enters the asymptotic regime immediately, without a disordered transient",
         "sec. 8.1", f"{m.od_ctx}: first n after which |n tau_n mu/3 - 1| < {spec['transient']:g} for good",
-        f"<= {few} impacts", f"{o['n10']:.0f}",
-        f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3)",
+        f"<= {few} impacts", f"{o['n10']:.0f} (for Xdot_n, n Xdot_n mu/(3 gamma) within the same band: "
+        f"{o['n_loose_xdot']:.0f})",
+        f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3); this is the "
+        f"paper's meaning: no disordered transient (sec. 8.1 contrasts it with the under-damped disorder), "
+        f"not 1 % accuracy of the asymptotic law (row overdamped-asymptotic-1pc)",
         judge(o["n10"] <= few))}
+
+
+@claim(CLAIMS, "overdamped-asymptotic-1pc", PAPER, "fig:very_rigid_poincare_overdamped",
+       known_failure="read strictly (the asymptotic laws to 1 %), 'immediately' does not hold: it takes thousands "
+                     "of impacts, more than the under-damped transient")
+def overdamped_asymptotic_1pc(m, spec) -> dict:
+    if not m.over:
+        return {}
+    o, few, tol = m.od, int(spec["few_impacts"]), spec["transient_strict"]
+
+    def when(v):
+        return f"{v:.0f}" if math.isfinite(v) else f"not within the {o['n_events']} impacts simulated"
+
+    return {m.od_name: Verdict(
+        "The over-damped system enters the asymptotic regime immediately, read strictly: tau_n and Xdot_n within "
+        f"{tol:.0%} of 3/(mu n) and 3 gamma/(mu n)",
+        "sec. 8.1; Theorem main_thm", f"{m.od_ctx}: first n after which |n tau_n mu/3 - 1| < {tol:g} and "
+        f"|n Xdot_n mu/(3 gamma) - 1| < {tol:g} for good (and the same for Xdot at {spec['transient']:g})",
+        f"<= {few} impacts for both", f"tau: {when(o['n_strict_tau'])}; Xdot: {when(o['n_strict_xdot'])} "
+        f"(at {spec['transient']:.0%}: tau {when(o['n10'])}, Xdot {when(o['n_loose_xdot'])})",
+        f"{tol:g}: the strict reading (the law to two significant digits; {spec['transient']:g} is the loose "
+        f"reading of overdamped-no-transient); 'immediately' read as <= {few} impacts, as there",
+        judge(o["n_strict_tau"] <= few and o["n_strict_xdot"] <= few))}
 
 
 @claim(CLAIMS, "overdamped-inelastic", PAPER, "fig:very_rigid_poincare_overdamped")
