@@ -409,6 +409,22 @@ def overdamped_asymptotic_1pc(m, spec) -> dict:
         judge(o["n_strict_tau"] <= few and o["n_strict_xdot"] <= few))}
 
 
+@claim(CLAIMS, "falcon-comparison", PAPER, "fig:rest-coeff")
+def falcon_comparison(m, spec) -> dict:
+    if not (m.under and m.P >= 3):
+        return {}
+    return {m.name: Verdict(
+        "The simulated r_n (constant, then declining, then fluctuating) is qualitatively the same as that of the "
+        "tungsten-carbide bead of Falcon et al. 1998 (their fig. 7), whose r ~ 0.97 at high impact speeds",
+        "sec. 8.1, eq. Falcon-rest-coeff, fig. rest-coeff", f"{m.ctx}: r_m = f_(m+1)/f_m",
+        "the experiment's r_n sequence and its fluctuation amplitude",
+        f"simulated plateau r = {m.rm:.4f} (eq. rest-coefficient-function-of-mu: {m.d['r0']:.4f}); "
+        f"{m.P} plateau bounces; the sequence after the plateau is drawn in the figure (first 200 r_m)",
+        "none: the comparison is qualitative, and the experimental data (Falcon et al., Eur. Phys. J. B 3, 45, "
+        "1998) are not available to this pipeline (no data set, no digitised figure)",
+        NOT_CHECKABLE)}
+
+
 @claim(CLAIMS, "overdamped-inelastic", PAPER, "fig:very_rigid_poincare_overdamped")
 def overdamped_inelastic(m, spec) -> dict:
     if not m.over:
