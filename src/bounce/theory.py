@@ -340,3 +340,31 @@ def nonlin_alpha_limit(gamma: float, mu: float, rho: float, a: float, b: float) 
     """alpha = lim alpha_n = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) of the map eq. ``mappa`` (Discussion), so that
     n Xdot_n alpha -> 1 (Lemma Giorgio's); the linear spring (rho = 1, a = b = 0) gives mu/(3 gamma)."""
     return mu / (3.0 * gamma) * (gamma / rho) ** (b / (a + 1.0))
+
+
+# --------------------------------------------------------------------------- sec. 5: no inelastic collapse
+
+def asympt_4ord(gamma, T):
+    """(Xddot_n, Xdddot_n, X^(4)_n) = (-gamma T^2/2, gamma T, -gamma), leading terms of eq. ``asympt-4ord``
+    (case Xddot_inf = Xdddot_inf = 0 of a hypothetical collapse at residual time T_n = T)."""
+    return -gamma * T**2 / 2, gamma * T, -gamma
+
+
+def taylor_x_4ord(xddot, xdddot, x4, tau):
+    """Xdot_n from x(t_{n+1}) = 0, eq. ``taylor-x-4ord`` without its O(tau^4) remainder."""
+    return -(xddot / 2 * tau + xdddot / 6 * tau**2 + x4 / 24 * tau**3)
+
+
+def taylor_xdot_4ord(xdot, xddot, xdddot, x4, tau):
+    """Xdot_{n+1} after the impact at t_{n+1} (collision rule), eq. ``taylor-xdot-4ord`` without O(tau^4)."""
+    return -xdot - xddot * tau - xdddot / 2 * tau**2 - x4 / 6 * tau**3
+
+
+def strange_combination(delta, xddot, T, xdddot_zeta, xdot):
+    """(T_n/Xdot_n)(Xdot_n - Xdot_{n+1})/(T_n - T_{n+1}) as eq. ``strange-combination`` writes it."""
+    return 4 * delta / abs(xddot) * T / (1 + (1 - 8 / 3 * xdddot_zeta * xdot / xddot**2) ** 0.5)
+
+
+def tau3bar(xddot, xdddot_zeta, xdot):
+    """The second non-zero root of eq. ``x-exact-expansion``, eq. ``tau3bar``."""
+    return 1.5 * abs(xddot) / xdddot_zeta * (1 + (1 - 8 / 3 * xdddot_zeta * xdot / xddot**2) ** 0.5)

@@ -66,6 +66,7 @@ from ..events import IMPACT
 from ..fitting import fit_limit, log_select, transient_length
 from ..model import Deviations, Parameters, State
 from ..simulate import simulate
+from .. import theory
 from ..theory import contact_derivatives, correction_exponent
 from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
 
@@ -267,6 +268,77 @@ def _limit_claim(q: str):
 
 for _q in QUANTITIES:
     claim(CLAIMS, f"{_q}-limit", PAPER, SUBJECT)(_limit_claim(_q))
+
+
+@claim(CLAIMS, "section-5-collapse-cases", PAPER, SUBJECT)
+def section_5_collapse_cases(m, spec) -> dict:
+    """Sec. 5's asymptotics of a hypothetical collapse (cases Xddot_inf = 0), evaluated along alpha_n = tau_n/T_n -> 0.
+
+    The sequences are hypothetical (the simulated dynamics never collapses), so the check is of the paper's
+    algebra: its eqs. evaluated in 50-digit mpmath against an own derivation.  Case 3: with eq. asympt-4ord,
+    eqs. taylor-x-4ord and taylor-xdot-4ord give Xdot_n = gamma T^3 alpha (1/4 - alpha/6 + alpha^2/24) and
+    Xdot_n - Xdot_{n+1} = gamma T^3 alpha^2 (1/6 - alpha/12), so the combination is
+    c = (1/6 - alpha/12)/(1/4 - alpha/6 + alpha^2/24) -> 2/3 (c - 2/3 ~ alpha/9).
+    Case 2 (Xddot_n ~ -Q T_n, Xdddot_n ~ Q, Delta_n ~ Q/6): c = (2/3)/(1 + sqrt(1 - 8 s/3)), s = Xdot_n/(Q T_n^2)
+    in [0, 3/8], so c <= 2/3; tau-bar_n = (3/2) T_n (1 + sqrt(...)) >= 3 T_n/2 > T_n.
+    """
+    from mpmath import mp, mpf
+
+    alphas = [10.0**-k for k in range(1, 7)]
+    with mp.workdps(50):
+        g, T = mpf(1) / 100, mpf(1) / 1000
+        xdd, xddd, x4 = theory.asympt_4ord(g, T)
+        ratio_g4, comb3, grow3, tbar3 = [], [], [], []
+        for a in alphas:
+            tau = mpf(a) * T
+            xd = theory.taylor_x_4ord(xdd, xddd, x4, tau)
+            xd1 = theory.taylor_xdot_4ord(xd, xdd, xddd, x4, tau)
+            ratio_g4.append(float(xd / (g / 4 * T**2 * tau)))
+            comb3.append(float(T / xd * (xd - xd1) / tau))
+            grow3.append(bool(xd1 / (T - tau) > xd / T))
+            tbar3.append(float(theory.tau3bar(xdd, xddd, xd) / T))
+        own3 = [(1 / 6 - a / 12) / (1 / 4 - a / 6 + a * a / 24) for a in alphas]
+        Q = mpf(1)
+        s_grid = [mpf(3) / 8 * k / 10 for k in range(11)]
+        comb2 = [float(theory.strange_combination(Q / 6, -Q * T, T, Q, s * Q * T**2)) for s in s_grid]
+        tbar2 = [float(theory.tau3bar(-Q * T, Q, s * Q * T**2) / T) for s in s_grid]
+    tol_round = 1e-12  # 50-digit evaluation, compared in float64
+    rows = {}
+    rows["xdot-gamma-T2-tau"] = Verdict(
+        "Case 3: Xdot_n ~ (gamma/4) T_n^2 tau_n", "sec. 5, eqs. asympt-4ord, taylor-x-4ord",
+        f"Xdot_n / ((gamma/4) T_n^2 tau_n) from the paper's eqs. at alpha_n = tau_n/T_n in {alphas}",
+        "-> 1; own derivation 1 - 2 alpha/3 + alpha^2/6",
+        "ratios " + ", ".join(f"{r:.9f}" for r in ratio_g4),
+        f"|ratio - (1 - 2a/3 + a^2/6)| <= {tol_round:g} (rounding)",
+        judge(all(abs(r - (1 - 2 * a / 3 + a * a / 6)) <= tol_round for r, a in zip(ratio_g4, alphas))))
+    rows["limit-two-thirds"] = Verdict(
+        "Case 3: lim (T_n/Xdot_n)(Xdot_n - Xdot_{n+1})/(T_n - T_{n+1}) = 2/3, hence Xdot_{n+1}/T_{n+1} > Xdot_n/T_n",
+        "sec. 5, eqs. taylor-x-4ord, taylor-xdot-4ord, strange-combination",
+        f"the combination from the paper's eqs. at alpha_n in {alphas}; the sign of Xdot_(n+1)/T_(n+1) - Xdot_n/T_n",
+        "own derivation (1/6 - a/12)/(1/4 - a/6 + a^2/24) -> 2/3 (c - 2/3 ~ a/9); Xdot/T increasing",
+        "c = " + ", ".join(f"{c:.9f}" for c in comb3) + f"; Xdot/T increasing at every alpha: {all(grow3)}",
+        f"|c - own| <= {tol_round:g} (rounding); |c - 2/3| <= 1.5 alpha/9 (the first-order term, with margin "
+        "for its alpha^2 part)",
+        judge(all(abs(c - o) <= tol_round and abs(c - 2 / 3) <= 1.5 * a / 9 for c, o, a in zip(comb3, own3, alphas))
+              and all(grow3)))
+    rows["limsup-two-thirds"] = Verdict(
+        "Case 2 (Xddot_inf = 0, Xdddot_inf != 0): limsup (T_n/Xdot_n)(Xdot_n - Xdot_{n+1})/(T_n - T_{n+1}) <= 2/3",
+        "sec. 5, eqs. strange-combination, tanalpha-tanbeta",
+        "eq. strange-combination with Delta_n = Q/6, Xddot_n = -Q T_n, Xdddot(zeta_n) = Q, over s = Xdot_n/(Q T_n^2) "
+        "in [0, 3/8] (where the root is real)",
+        "own derivation c = (2/3)/(1 + sqrt(1 - 8 s/3)) in [1/3, 2/3], max 2/3 at s = 3/8",
+        f"c from {min(comb2):.9f} to {max(comb2):.9f}",
+        f"c <= 2/3 + {tol_round:g} and >= 1/3 - {tol_round:g} (rounding)",
+        judge(max(comb2) <= 2 / 3 + tol_round and min(comb2) >= 1 / 3 - tol_round))
+    rows["tau-bar-exceeds-T"] = Verdict(
+        "The second root tau-bar_n of eq. tau3bar exceeds T_n (cases 2 and 3), so it is not the flight time",
+        "sec. 5, eq. tau3bar", "tau-bar_n/T_n from eq. tau3bar: case 2 over s in [0, 3/8], case 3 at alpha_n in "
+        f"{alphas}",
+        "> 1 (own derivation: (3/2)(1 + sqrt(1 - 8 s/3)) in [3/2, 3] for case 2, -> 3/2 for case 3)",
+        f"case 2: {min(tbar2):.6f} .. {max(tbar2):.6f}; case 3: " + ", ".join(f"{t:.6f}" for t in tbar3),
+        "> 1 strictly (exact inequality)",
+        judge(min(tbar2) > 1 and min(tbar3) > 1))
+    return rows
 
 
 @claim(CLAIMS, "tau-decay-exponent", BEYOND, SUBJECT)

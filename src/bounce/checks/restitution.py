@@ -27,7 +27,8 @@ rule (eq. collision-rule), psi'(t_n^-) = xi'(t_n^+) = xidot[n-1].
     macroscopic bounce is the ratio of successive landing speeds: Xdot_{2m+1}/Xdot_{2m-1} for
     the initial run of double impacts (contact flight within ``double_band`` of T_xi), and
     Xdot_{n+1}/Xdot_n for every impact after it (each flight is then a bounce, as in eq.
-    restituzione).  The band [u1, u2] spans the bounces where |r/r_our - 1| > ``our_r_threshold``.
+    restituzione).  The band [u1, u2] spans the bounces where the dissipated fraction is off,
+    |(1 - r)/(1 - r_our) - 1| > ``our_r_threshold`` (1 - r, not r: r ~ 1 - 1e-4 at small u).
     In terms of the rigid ball's own speed (the centre of mass, flight 2u/gamma) the small-u
     branch is checked too: there u_COM = gamma tau_n/2 = Xdot_n/2, so the law reads 1 - 2 mu u/(3 gamma).
 """
@@ -93,14 +94,24 @@ def overdamped(ds, cfg) -> dict:
     bad = np.nonzero(~ok)[0]
     i0 = 0 if bad.size == 0 else int(bad[-1]) + 1
     n = np.arange(1, len(tau))
-    q = n * tau[1:] * mu / 3.0
-    badq = np.nonzero(~(np.abs(q - 1.0) < cfg["transient"]))[0]
-    n10 = float(n[badq[-1] + 1]) if badq.size and badq[-1] + 1 < n.size else (1.0 if not badq.size else math.inf)
+    q = n * tau[1:] * mu / 3.0  # tau_n / (3/(mu n)), Theorem main_thm
+    q_x = n * np.abs(xd[:-1]) * mu / (3.0 * gamma)  # Xdot_n / (3 gamma/(mu n)), proof of Theorem main_thm
+    n10 = settled(n, q, cfg["transient"])
     r_eff = gamma * tau[1] / (2.0 * abs(xi[0]))  # psi'(t_1^-) = xidot[0]
     return {"gamma": gamma, "mu": mu, "w": w, "n0": i0 + 1, "n_min": int(np.argmin(w)) + 1,
             "sign_changes": int(np.sum(np.diff(np.sign(w)) != 0)),
             "slope_changes": int(np.sum(np.diff(np.sign(np.diff(w))) != 0)),
-            "n10": n10, "r_eff": r_eff, "n_events": len(w)}
+            "n10": n10, "r_eff": r_eff, "n_events": len(w),
+            "n_strict_tau": settled(n, q, cfg["transient_strict"]), "n_strict_xdot": settled(n, q_x, cfg["transient_strict"]),
+            "n_loose_xdot": settled(n, q_x, cfg["transient"])}
+
+
+def settled(n, q, tol: float) -> float:
+    """First n after which |q_n - 1| < tol for every later recorded impact (1 if always, inf if never)."""
+    bad = np.nonzero(~(np.abs(q - 1.0) < tol))[0]
+    if not bad.size:
+        return 1.0
+    return float(n[bad[-1] + 1]) if bad[-1] + 1 < n.size else math.inf
 
 
 def our_r_test(ds, dbl, cfg) -> dict:
@@ -119,13 +130,15 @@ def our_r_test(ds, dbl, cfg) -> dict:
     r = np.concatenate([rd, rs])
     kind_b = np.concatenate([np.ones(ud.size, dtype=np.int8), np.zeros(us.size, dtype=np.int8)])
     ro = our_r(u, gamma, mu)
-    err = r / ro - 1.0
+    # judged on the dissipated fraction 1 - r (the quantity eq. our-r models; r itself is ~1 - 1e-4 at small u,
+    # where a relative error of r says nothing); the error of r itself is kept for comparison
+    err = (1.0 - r) / (1.0 - ro) - 1.0
     thr = cfg["our_r_threshold"]
     bad = np.abs(err) > thr
     u1, u2 = (float(u[bad].min()), float(u[bad].max())) if bad.any() else (math.nan, math.nan)
-    diss = (1.0 - r) / (1.0 - ro) - 1.0
-    badd = np.abs(diss) > cfg["dissipation_threshold"]
-    d1, d2 = (float(u[badd].min()), float(u[badd].max())) if badd.any() else (math.nan, math.nan)
+    err_r = r / ro - 1.0
+    bad_r = np.abs(err_r) > thr
+    d1, d2 = (float(u[bad_r].min()), float(u[bad_r].max())) if bad_r.any() else (math.nan, math.nan)
     # small-u branch in the centre-of-mass convention: u_COM = gamma tau_n / 2 of every flight
     # small-u branch: q_x = (1 - Xdot_(n+1)/Xdot_n)/(mu Xdot_n/(3 gamma)) (the map quantity of check
     # main-theorem) and, in the centre-of-mass convention u = gamma tau_n/2, r = tau_(n+1)/tau_n,
@@ -193,7 +206,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
             com_r=("com_sample", o["plot"]["rcom"], {"long_name": "tau_(n+1)/tau_n", "units": "1"}),
         )
         data.attrs.update(r_theory=d["r0"], T_xi=d["Txi"], u_c=o["uc"], band_u1=o["u1"], band_u2=o["u2"],
-                          dissipation_band_u1=o["d1"], dissipation_band_u2=o["d2"], slope_com=o["slope_com"],
+                          r_band_u1=o["d1"], r_band_u2=o["d2"], slope_com=o["slope_com"],
                           slope_x=o["slope_x"], plateau_length=P, double_run=d["run_len"],
                           rest_gamma=d["gamma"], rest_mu=d["mu"], rest_scene=name,
                           our_r_threshold=spec["our_r_threshold"])
@@ -287,21 +300,30 @@ def contact_time(m, spec) -> dict:
 def our_r_band(m, spec) -> dict:
     if not m.under:
         return {}
-    o, thr = m.o, spec["our_r_threshold"]
+    o, thr, least = m.o, spec["our_r_threshold"], int(spec["our_r_min_outside"])
+    n_below, n_above = int(np.sum(o["u"] < o["u1"])), int(np.sum(o["u"] > o["u2"]))
+    if np.isfinite(o["u1"]) and min(n_below, n_above) < least:
+        # the run ends (or starts) inside the band: one side is not sampled, so it cannot be judged
+        verdict = NOT_CHECKABLE
+    else:
+        verdict = judge(bool(np.isfinite(o["u1"]) and (o["max_err_above"] <= thr) and (o["max_err_below"] <= thr)))
     return {m.name: Verdict(
-        f"Eq. our-r is accurate for large and small impact speeds (within {thr:.0%}) and fails in an "
+        f"Eq. our-r is accurate for large and small impact speeds (1 - r within {thr:.0%}) and fails in an "
         "intermediate band (under-damped spring)", "eq. our-r, sec. Discussion",
         f"{m.ctx}: restitution per macroscopic bounce, r = ratio of successive landing speeds u = Xdot "
-        f"({m.d['run_len']} double-impact bounces, then every impact); band = range of u where |r/r_our - 1| > {thr:g}",
-        "a bounded band [u1, u2] with r within the threshold outside it",
+        f"({m.d['run_len']} double-impact bounces, then every impact); band = range of u where the dissipated "
+        f"fraction is off, |(1 - r)/(1 - r_our) - 1| > {thr:g}",
+        "a bounded band [u1, u2] with 1 - r within the threshold outside it",
         f"band [u1, u2] = [{o['u1']:.3g}, {o['u2']:.3g}] = [{o['u1'] / o['uc']:.3g}, {o['u2'] / o['uc']:.3g}] u_c "
-        f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces); max error above u2: "
-        f"{o['max_err_above']:.2g}, below u1: {o['max_err_below']:.2g}; 1 - r off by > "
-        f"{spec['dissipation_threshold']:.0%} in [{o['d1']:.3g}, {o['d2']:.3g}]",
-        f"threshold {thr:g} (brief); reproduced if failures are confined to a band strictly inside the "
-        "simulated speeds, with correct r on both sides",
-        judge(bool(np.isfinite(o["u1"]) and o["u1"] > np.min(o["u"]) and o["u2"] < np.max(o["u"])
-                   and (o["max_err_above"] <= thr) and (o["max_err_below"] <= thr))))}
+        f"(u_c = {o['uc']:.3g}; {o['n_bad']} of {o['n_bounces']} bounces; simulated u in [{np.min(o['u']):.3g}, "
+        f"{np.max(o['u']):.3g}]); max error of 1 - r above u2: {o['max_err_above']:.2g}, below u1: "
+        f"{o['max_err_below']:.2g} ({n_above} bounces above u2, {n_below} below u1); judged on r itself (as before) "
+        f"the band would be [{o['d1']:.3g}, {o['d2']:.3g}]",
+        f"{thr:g} relative on 1 - r (the brief's 5 %, applied to the dissipated fraction: where 1 - r ~ 1e-4 a 5 % "
+        "band on r would accept any law); reproduced if failures are confined to a band strictly inside the "
+        f"simulated speeds, with 1 - r correct on both sides; not checkable if a side has fewer than {least} bounces "
+        "(the run does not reach past the band: a handful of bounces is within the per-bounce fluctuation of r)",
+        verdict)}
 
 
 @claim(CLAIMS, "our-r-small-u", PAPER, "eq:our-r")
@@ -363,9 +385,51 @@ def overdamped_no_transient(m, spec) -> dict:
     return {m.od_name: Verdict(
         "The over-damped system enters the asymptotic regime immediately, without a disordered transient",
         "sec. 8.1", f"{m.od_ctx}: first n after which |n tau_n mu/3 - 1| < {spec['transient']:g} for good",
-        f"<= {few} impacts", f"{o['n10']:.0f}",
-        f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3)",
+        f"<= {few} impacts", f"{o['n10']:.0f} (for Xdot_n, n Xdot_n mu/(3 gamma) within the same band: "
+        f"{o['n_loose_xdot']:.0f})",
+        f"'immediately' read as <= {few} impacts (the under-damped rest-coeff transient lasts ~2e3); this is the "
+        f"paper's meaning: no disordered transient (sec. 8.1 contrasts it with the under-damped disorder), "
+        f"not 1 % accuracy of the asymptotic law (row overdamped-asymptotic-1pc)",
         judge(o["n10"] <= few))}
+
+
+@claim(CLAIMS, "overdamped-asymptotic-1pc", PAPER, "fig:very_rigid_poincare_overdamped",
+       known_failure="read strictly (the asymptotic laws to 1 %), 'immediately' does not hold: it takes thousands "
+                     "of impacts, more than the under-damped transient")
+def overdamped_asymptotic_1pc(m, spec) -> dict:
+    if not m.over:
+        return {}
+    o, few, tol = m.od, int(spec["few_impacts"]), spec["transient_strict"]
+
+    def when(v):
+        return f"{v:.0f}" if math.isfinite(v) else f"not within the {o['n_events']} impacts simulated"
+
+    return {m.od_name: Verdict(
+        "The over-damped system enters the asymptotic regime immediately, read strictly: tau_n and Xdot_n within "
+        f"{tol:.0%} of 3/(mu n) and 3 gamma/(mu n)",
+        "sec. 8.1; Theorem main_thm", f"{m.od_ctx}: first n after which |n tau_n mu/3 - 1| < {tol:g} and "
+        f"|n Xdot_n mu/(3 gamma) - 1| < {tol:g} for good (and the same for Xdot at {spec['transient']:g})",
+        f"<= {few} impacts for both", f"tau: {when(o['n_strict_tau'])}; Xdot: {when(o['n_strict_xdot'])} "
+        f"(at {spec['transient']:.0%}: tau {when(o['n10'])}, Xdot {when(o['n_loose_xdot'])})",
+        f"{tol:g}: the strict reading (the law to two significant digits; {spec['transient']:g} is the loose "
+        f"reading of overdamped-no-transient); 'immediately' read as <= {few} impacts, as there",
+        judge(o["n_strict_tau"] <= few and o["n_strict_xdot"] <= few))}
+
+
+@claim(CLAIMS, "falcon-comparison", PAPER, "fig:rest-coeff")
+def falcon_comparison(m, spec) -> dict:
+    if not (m.under and m.P >= 3):
+        return {}
+    return {m.name: Verdict(
+        "The simulated r_n (constant, then declining, then fluctuating) is qualitatively the same as that of the "
+        "tungsten-carbide bead of Falcon et al. 1998 (their fig. 7), whose r ~ 0.97 at high impact speeds",
+        "sec. 8.1, eq. Falcon-rest-coeff, fig. rest-coeff", f"{m.ctx}: r_m = f_(m+1)/f_m",
+        "the experiment's r_n sequence and its fluctuation amplitude",
+        f"simulated plateau r = {m.rm:.4f} (eq. rest-coefficient-function-of-mu: {m.d['r0']:.4f}); "
+        f"{m.P} plateau bounces; the sequence after the plateau is drawn in the figure (first 200 r_m)",
+        "none: the comparison is qualitative, and the experimental data (Falcon et al., Eur. Phys. J. B 3, 45, "
+        "1998) are not available to this pipeline (no data set, no digitised figure)",
+        NOT_CHECKABLE)}
 
 
 @claim(CLAIMS, "overdamped-inelastic", PAPER, "fig:very_rigid_poincare_overdamped")
@@ -418,7 +482,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         uu = np.geomspace(u.min(), u.max(), 400)
         for ax in (a5, a6):
             ax.axvspan(ds.attrs["band_u1"], ds.attrs["band_u2"], color="r", alpha=0.1,
-                       label=r"$|r/r_{our}-1|>%g$" % ds.attrs["our_r_threshold"])
+                       label=r"$|(1-r)/(1-r_{our})-1|>%g$" % ds.attrs["our_r_threshold"])
         a5.semilogx(u[~dbl], r[~dbl], ".", ms=1, color="0.4", label="single-impact bounces")
         a5.semilogx(u[dbl], r[dbl], "o", ms=3, color="C0", label="double-impact bounces")
         a5.semilogx(uu, our_r(uu, g, mu), "C3-", lw=1, label="eq. our-r")
