@@ -40,7 +40,7 @@ def test_block_says_what_a_run_did_not_produce(tmp_path):
     assert "not measured in this run" in text
 
 
-@pytest.mark.parametrize("x, s", [(0.97, "0.97"), (3412.0, "3.4e+03"), (1.234e-7, "1.2e-07"), (0.0, "0"),
+@pytest.mark.parametrize("x, s", [(0.97, "0.97"), (3412.0, "3,400"), (1.2e7, "1.2e+07"), (1.234e-7, "1.2e-07"), (0.0, "0"),
                                   (float("nan"), "n/a")])
 def test_number_format(x, s):
     assert _sig(x) == s

@@ -33,8 +33,10 @@ def _sig(x: float, digits: int = 2) -> str:
         return "n/a"
     if x == 0:
         return "0"
-    if 1e-3 <= abs(x) < 1e5:
+    if 1e-3 <= abs(x) < 100:
         return f"{x:.{digits}g}"
+    if 100 <= abs(x) < 1e7:  # whole numbers, rounded to ``digits`` significant digits: 3,900
+        return f"{round(x, digits - 1 - int(np.floor(np.log10(abs(x))))):,.0f}"
     return f"{x:.{digits - 1}e}"
 
 
@@ -106,7 +108,8 @@ def pipeline_lines(results: Path) -> list[str]:
             f"({r['cpus_on_machine']} CPUs); outputs {r['outputs_megabytes']:.0f} MB, largest file "
             f"{r['largest_output_megabytes']:.0f} MB.")
     if jobs:
-        lines.append(f"- CPU time of its {jobs} jobs (`results/timing/**/*.tsv`): {cpu:.0f} s in all.")
+        lines.append(f"- CPU time Snakemake recorded for the {jobs} jobs with a benchmark file "
+                     f"(`results/timing/**/*.tsv`): {cpu:.0f} s in all.")
     return lines or ["- Pipeline timing: not measured in this run (`python benchmarks/bench_pipeline.py`)."]
 
 

@@ -28,6 +28,8 @@ rule sweep_shard:
         runtime=lambda w: int(SWEEPS[w.name].get("shard_minutes", 30)),
     log:
         "results/logs/sweeps/{name}/shard-{shard}-of-{shards}.log",
+    benchmark:
+        "results/timing/sweeps/{name}/shard-{shard}-of-{shards}.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
         shard=r"\d+",
@@ -51,6 +53,8 @@ rule sweep_gather:
         runtime=10,
     log:
         "results/logs/sweeps/{name}/gather.log",
+    benchmark:
+        "results/timing/sweeps/{name}/gather.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
@@ -72,6 +76,8 @@ rule sweep_figure:
         runtime=10,
     log:
         "results/logs/sweeps/{name}/figure.log",
+    benchmark:
+        "results/timing/sweeps/{name}/figure.tsv"
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
