@@ -104,6 +104,24 @@ def test_ci_validation_verdicts(ci_results):
     assert not bad, "\n".join(bad)
 
 
+def test_two_clean_runs_give_identical_bytes(ci_results, tmp_path_factory):
+    """Issue 8: a second clean run of the CI-sized DAG gives byte-identical netCDF, PNG and PDF files, except
+    the timing files: results/timing/ and the studies that measure CPU time (bounce.studies: ``timed``)."""
+    from bounce.studies import STUDIES
+
+    work = tmp_path_factory.mktemp("pipeline-again")
+    _snakemake(work, "--configfile", str(ROOT / "config" / "ci.yaml"), "--cores", "2")
+    again = work / "ci-run" / "results"
+    timed = {f"methods/{stem}" for name, st in STUDIES.items() if st.timed
+             for stem in (name, f"fig-{name}")}
+    files = sorted(p.relative_to(ci_results) for p in ci_results.rglob("*")
+                   if p.suffix in (".nc", ".png", ".pdf") and p.parts[len(ci_results.parts)] != "timing")
+    assert len(files) > 50
+    compared = [f for f in files if str(f.with_suffix("")) not in timed]
+    differ = [str(f) for f in compared if (ci_results / f).read_bytes() != (again / f).read_bytes()]
+    assert not differ, f"not byte-identical across two clean runs: {differ}"
+
+
 def test_rerun_does_nothing(ci_results):
     proc = _snakemake(_launch_dir(ci_results), "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
     assert "Nothing to be done" in proc.stdout + proc.stderr

@@ -20,6 +20,9 @@ class Study:
     build: str
     plot: str
     config: Callable[[dict], dict]
+    #: the study measures CPU time (budgets, the cheapest model): its dataset and figure are timing files,
+    #: not byte-reproducible by design (its CPU seconds also go to results/timing/methods/<study>-cpu.nc)
+    timed: bool = False
 
     def functions(self) -> tuple[Callable, Callable]:
         module = importlib.import_module(self.module)
@@ -39,9 +42,12 @@ STUDIES = {
                             lambda c: c["reduced"]["switch"]),
     "reduced-vs-dimer": Study("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer",
                               lambda c: c["reduced"]["vs_dimer"]),
-    "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice),
-    "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision", lambda c: c["methods"]),
-    "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map", lambda c: c["methods"]),
+    "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice,
+                         timed=True),
+    "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision", lambda c: c["methods"],
+                            timed=True),
+    "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map", lambda c: c["methods"],
+                           timed=True),
 }
 
 
