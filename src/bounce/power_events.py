@@ -172,15 +172,9 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     cannot skip an impact (:mod:`bounce.power_flight`).
     """
     from .model import Deviations, InputError, State
-    from .simulate import MAX_EVENTS, Trajectory, _positive_int
+    from .simulate import Trajectory, stop_rules
 
-    max_events = _positive_int("events", max_events, MAX_EVENTS)
-    t_max = float(t_max)
-    if math.isnan(t_max) or not t_max > 0.0:
-        raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
-    energy_stop = float(energy_stop)
-    if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
-        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
     if params.spring != spring and params.spring.name != "linear":
         raise InputError(f"spring must be the law of params ({params.spring!r}) or given with linear params, got {spring!r}")
     rho, a, b = (1.0, 0.0, 0.0) if spring.name == "linear" else (spring.rho, spring.a, spring.b)

@@ -95,6 +95,19 @@ def _positive_int(name: str, value, largest: int) -> int:
     return int(number)
 
 
+def stop_rules(max_events, t_max, energy_stop) -> tuple[int, float, float]:
+    """The validated stop rules of a run (every spring law's front uses these): an event cap in
+    [1, MAX_EVENTS], t_max in (0, inf], energy_stop a finite number >= 0."""
+    max_events = _positive_int("events", max_events, MAX_EVENTS)
+    t_max = float(t_max)
+    if math.isnan(t_max) or not t_max > 0.0:
+        raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
+    energy_stop = float(energy_stop)
+    if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
+        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    return max_events, t_max, energy_stop
+
+
 def simulate(
     params: Parameters,
     initial: State | Deviations,
@@ -118,13 +131,7 @@ def simulate(
         raise InputError(
             f"spring law must be one of {EXACT_LAWS + SERIES_LAWS}, got {params.spring.name!r}"
         )
-    max_events = _positive_int("events", max_events, MAX_EVENTS)
-    t_max = float(t_max)
-    if math.isnan(t_max) or not t_max > 0.0:
-        raise InputError(f"t_max must be > 0 (allowed range: (0, inf]), got {t_max!r}")
-    energy_stop = float(energy_stop)
-    if not (energy_stop >= 0.0 and math.isfinite(energy_stop)):
-        raise InputError(f"energy_stop must be a finite number >= 0 (allowed range: [0, inf)), got {energy_stop!r}")
+    max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
     start = initial.deviations(params)
     check_supported(params, start)
     params_arr, coefs = make_oscillator(params.mu)
