@@ -37,7 +37,8 @@ config.clear()
 config.update(_checked)
 
 # Where results/, logs and .snakemake/ go: "." for the full pipeline, its own folder for the CI-sized
-# config, so that a CI-sized run never overwrites the full results.
+# config, so that a CI-sized run never overwrites the full results (`snakemake --directory DIR` takes
+# precedence over it, as the tests do).
 workdir: config["workdir"]
 
 

@@ -104,3 +104,12 @@ def test_snakemake_dry_run_stops_with_one_line(tmp_path):
     assert lines == ["config error: scenes.rigid-fall: unknown key 'gama'; allowed: description, gamma, initial, keep, "
                      "mu, spring, stop"], proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_ci_sized_config_writes_to_its_own_folder(tmp_path):
+    """config/ci.yaml sets workdir: ci-run, so a CI-sized run never writes over the full results/."""
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--quiet", "--cores", "1", "-s", str(ROOT / "Snakefile"),
+                           "--configfile", str(ROOT / "config" / "ci.yaml")],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert (tmp_path / "ci-run" / ".snakemake").is_dir() and not (tmp_path / ".snakemake").exists()
