@@ -360,7 +360,7 @@ def test_disk_full_is_reported_and_old_file_kept(tmp_path, capsys, monkeypatch):
 
 
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
-def test_signal_during_write_in_process(signum, status, tmp_path, capsys, monkeypatch):
+def test_signal_during_write_in_process(signum, status, tmp_path, capsys, monkeypatch, request):
     """SIGINT (KeyboardInterrupt) or SIGTERM during the write: one line, status 128 + signal, the
     temporary file removed, the old file kept (SIGINT used to print a 19-line traceback)."""
     old, before = _existing(tmp_path, capsys)
@@ -373,6 +373,10 @@ def test_signal_during_write_in_process(signum, status, tmp_path, capsys, monkey
         raise AssertionError("signal not delivered")
 
     monkeypatch.setattr("xarray.Dataset.to_netcdf", interrupted)
+    if signum == signal.SIGINT and signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        # started in the background (the shell ignores SIGINT there): act as the interactive process would
+        previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+        request.addfinalizer(lambda: signal.signal(signal.SIGINT, previous))
     code, out, err = _run(["simulate", *GOOD, "--events", "5", "--out", str(old)], capsys)
     assert code == status and out == ""
     assert len(err.splitlines()) == 1 and err.startswith("error: ") and "Traceback" not in err
@@ -393,8 +397,11 @@ sys.exit(main(sys.argv[1:]))
 
 def _start_slow_write(tmp_path, out):
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    # a user's terminal delivers SIGINT: restore its default in the child even when this test process was
+    # started in the background, where the shell leaves SIGINT ignored (and Python then installs no handler)
     proc = subprocess.Popen([sys.executable, "-c", _SLOW_WRITER, "simulate", *GOOD, "--events", "5", "--out", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     while not [p for p in tmp_path.iterdir() if p.name.endswith(".bounce-tmp")]:
         assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
