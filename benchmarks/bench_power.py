@@ -1,43 +1,47 @@
-"""Peer benchmark for the power-law spring (issue 9): bounce against heyoka, same run, one core.
+"""Peer benchmark for the nonlinear spring (issue 9): bounce against heyoka in ONE run, one core.
 
-Laws (gamma = mu = 0.01, rho = 1): ``linear`` (a = b = 0) and ``hertz`` (a = b = 1/2) of eq.
-``eq-motion-nonlin-psi-xi``.  Scenes per law:
+Law: Hertz (rho = 1, a = b = 1/2) of eq. ``eq-motion-nonlin-psi-xi``, gamma = mu = 0.01 (``--law
+linear`` runs the same on a = b = 0).  Both solvers get the same float64 start states in the same
+deviation variables (x, x', xi', eta = xi - xi_eq, eq. ``nonlin-equilibrium-xi``); heyoka is set up
+as :mod:`bounce.methods.heyoka_taylor` (compiled once and reused, terminal event x = 0 with direction
+negative, tolerance 2^-52).  Scenes:
 
-* ``drop``: linear: the paper's drop psi(0) = 6, xi = xi' = psi' = 0.  Hertz: the same drop with
-  the spring at its static compression xi(0) = xi_eq, because with xi(0) = 0 heyoka cannot start
-  (the Taylor coefficients of |xi|^(1/2) are not finite there); the paper's drop is its own row
-  (``paper drop, xi(0) = 0``);
-* ``deep``: a post-impact state deep in the asymptotic regime: bounce's state after 1e5 impacts of
-  the drop where bounce simulates the law, else x = 0, x' = 1e-8, xi' = 2e-9, eta = 1e-13.
+* ``paper drop``: psi(0) = 6, xi = xi' = psi' = 0 (the spring at rest length; Hertz only);
+* ``drop``: the same drop with the spring at its static compression xi(0) = xi_eq;
+* ``deep``: bounce's post-impact state after ``DEEP_INDEX`` = 1e6 impacts of the drop (x' ~ 1e-5).
 
-Measured for each (law, scene), in the same run:
+Measured per scene, in this run:
 
-* impacts/s: median (min, max) of ``--repeats`` runs; bounce over ``--events`` impacts (after a
-  warm-up call: no JIT compile), heyoka over ``--heyoka-events`` (integrator compiled once and
-  reused); ratio bounce / heyoka of the medians;
-* one-step error: from the same float64 post-impact states (the scene's start and the first
-  ``--one-step`` states of heyoka's run), each solver does one flight; the largest relative error
-  of tau, x', xi' after the impact (eta against max(|eta|, 1e-6 |xi_eq|)) against the independent
-  mpmath reference ``tests/power_reference.py`` (50 digits) given exactly the state the solver
-  started from;
-* skipped impacts: bounce: every event an impact and the run complete (its root finder cannot
-  skip one); heyoka: its own failure report (missed impact / stall, index and reason), and the
-  first impact where its times leave bounce's by more than 1e-9 relative (in the drop that is the
-  chaos of the transient, not a skip; in the deep scene a skip);
-* heyoka's event cooldown: its default (automatic) and each of ``COOLDOWNS``, along the deep
-  scene, and a depth scan: deep states with x' = u (u = 1e-6 ... 1e-11), 200 impacts each; the
-  first u where it fails, with the reason, and the asymptotic impact index it corresponds to,
-  n ~ 1/(alpha u) with alpha = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) (paper, Discussion).  The
-  best setting is the one clean to the smallest u (ties: the faster).
+1. impacts/s, median (min, max) of ``--repeats`` runs in process CPU time, both solvers over the
+   same ``--heyoka-events`` impacts from the same start (the ratio is taken there), and bounce alone
+   over ``--events`` impacts (after a warm-up call: no JIT compile in any timing); and along the
+   drop by windows of impact indices ``WINDOWS`` (both from bounce's exact state at the window's
+   start): the transient (long flights through the rest length xi = 0) and the asymptotic regime
+   cost differently;
+2. one-step error: from the scene's start and bounce's post-impact states at ``ONE_STEP`` indices
+   of it, each solver does one flight from the same float64 state; the largest relative error of
+   tau, x', xi' after the impact and eta (relative to max(|eta|, 1e-6 |xi_eq|): eta is xi - xi_eq,
+   a difference whose float64 floor is ~eps |xi_eq|) against the independent 50-digit mpmath
+   reference ``tests/power_reference.py`` started from exactly that state;
+3. skipped impacts, bounce (``--long N``, default 1e7): the drop continued in chunks of 1e6 impacts
+   (each chunk from the last post-impact state: bounded memory), every event must be an impact
+   and every chunk complete; the first flight of every chunk is checked against the mpmath
+   reference (same tau to 1e-12 relative: the reference's root search returns the first root, so
+   a skipped impact would show as a whole flight of difference);
+4. heyoka's event cooldown (its default, automatic, and each of ``COOLDOWNS``): (a) along the real
+   trajectory: from bounce's exact states after n = 1e4, 1e5, 1e6 (and the end of the long run)
+   ``CHECK_FLIGHTS`` impacts, compared with bounce from the same state: the first index where the
+   impact times differ by more than 1e-9 relative, and heyoka's own failure report; (b) beyond
+   reach, a depth scan: post-impact states x' = u (u = 1e-6 ... 1e-13) with the deep state's
+   ratio xi'/x' and eta = 0, 200 impacts each; the first u where heyoka fails, with its reason,
+   and the impact index it corresponds to on the drop, n ~ 1/(alpha u) with alpha of the
+   Discussion's map (:func:`bounce.theory.nonlin_alpha_limit`).  The best setting is the one
+   clean to the smallest u (ties: the faster on the deep scene).
 
-The bounce side is :func:`bounce_run`: ``bounce.simulate`` for the linear law and the power-law
-solver (``bounce.power_events.simulate_power``) once it is on main; until then the Hertz rows
-show heyoka alone.
+Run (results printed as a table and written as JSON, default ``results/timing/bench_power.json``)::
 
-Run::
-
-    python benchmarks/bench_power.py                     # defaults: 1e6 / 2e4 impacts, 5 repeats
-    python benchmarks/bench_power.py --json results/bench_power.json
+    python benchmarks/bench_power.py                       # Hertz, 1e7 impacts for the skip check
+    python benchmarks/bench_power.py --long 0 --repeats 3  # quick: no long run
 """
 
 from __future__ import annotations
@@ -46,7 +50,9 @@ import argparse
 import json
 import math
 import os
+import platform
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -59,19 +65,26 @@ sys.path.insert(0, str(ROOT / "tests"))
 import power_reference as PR  # noqa: E402
 
 from bounce import Deviations, Parameters, State, simulate  # noqa: E402
+from bounce.events import IMPACT  # noqa: E402
 from bounce.methods import heyoka_taylor as HT  # noqa: E402
-from bounce.simulate import EXACT_LAWS  # noqa: E402
 from bounce.springs import SPRING_LAWS  # noqa: E402
+from bounce.theory import nonlin_alpha_limit  # noqa: E402
 
 GAMMA = MU = 0.01
 LAWS = {"linear": (1.0, 0.0, 0.0), "hertz": (1.0, 0.5, 0.5)}
 COOLDOWNS = (None, 0.0, 1e-15, 1e-12, 1e-9)
-DEPTHS = (1e-6, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 1e-10, 1e-11)
-DEEP_INDEX = 100_000
+DEPTHS = (1e-6, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13)
+DEEP_INDEX = 1_000_000
+CHECKPOINTS = (10_000, 100_000, 1_000_000)
+WINDOWS = (0, 10, 100, 1_000, 10_000, 100_000)
+CHECK_FLIGHTS = 2000
+ONE_STEP = (0, 9, 99, 999)
+CHUNK = 1_000_000
 DIVERGE_REL = 1e-9
+SKIP_REL = 1e-12
 
 
-def pin_to_one_core():
+def pin_to_one_core() -> str:
     if not hasattr(os, "sched_setaffinity"):
         return "not pinned (os.sched_setaffinity unavailable)"
     allowed = sorted(os.sched_getaffinity(0))
@@ -79,225 +92,286 @@ def pin_to_one_core():
     return f"pinned to core {allowed[-1]} of {allowed}"
 
 
-def law_setup(name):
-    """(params, heyoka setting): the power law through Parameters once bounce registers it,
-    else heyoka's own law setting on top of linear Parameters."""
+def law_parameters(name: str) -> Parameters:
     rho, a, b = LAWS[name]
     if name == "linear":
-        return Parameters(GAMMA, MU), {}
-    power = SPRING_LAWS.get("power")
-    if power is None:
-        return Parameters(GAMMA, MU), {"rho": rho, "a": a, "b": b}
-    return Parameters(GAMMA, MU, power(rho=rho, a=a, b=b)), {}
+        return Parameters(GAMMA, MU)
+    return Parameters(GAMMA, MU, SPRING_LAWS["power"](rho=rho, a=a, b=b))
 
 
-def bounce_run(params, initial, events, law="linear"):
-    """bounce's exact solver for the law (the one call that selects the power-law solver), or None
-    while the power-law solver (and the law in ``params.spring``) is not available."""
-    if law == "linear":
-        return simulate(params, initial, max_events=events)
-    if params.spring.name != "power":
-        return None
-    if "power" in EXACT_LAWS:
-        return simulate(params, initial, max_events=events)
-    try:
-        from bounce.power_events import simulate_power
-    except ImportError:
-        return None
-    return simulate_power(params, params.spring, initial, max_events=events)
+def post_impact(tr, k: int) -> Deviations:
+    """bounce's state just after impact k (0-based) of trajectory ``tr``."""
+    return Deviations(0.0, float(tr.xdot[k]), float(tr.xidot[k]), float(tr.eta[k]))
 
 
-def deviations(params, xi_eq, x, u, a, eta):
-    """Deviations for ``params`` of the state (x, u, a, xi = xi_eq + eta) (eta re-referenced if needed)."""
-    return Deviations(x, u, a, eta if xi_eq == params.xi_eq else (xi_eq - params.xi_eq) + eta)
-
-
-def scenes(name, params, setting):
-    """name -> initial state of the law's scenes (module docstring)."""
-    xi_eq = HT.spring_law(params, setting)[3]
-    paper_drop = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
-    out = {"drop": paper_drop} if name == "linear" else {
-        "paper drop, xi(0) = 0": paper_drop, "drop": State.from_psi_xi(6.0, 0.0, xi_eq, 0.0)}
-    tr = bounce_run(params, out["drop"], DEEP_INDEX, name)
-    if tr is not None:
-        k = DEEP_INDEX - 1
-        out["deep"] = Deviations(0.0, float(tr.xdot[k]), float(tr.xidot[k]), float(tr.eta[k]))
-    else:
-        out["deep"] = deviations(params, xi_eq, 0.0, 1e-8, 2e-9, 1e-13)
+def scenes(name: str, params: Parameters) -> dict:
+    drop = State.from_psi_xi(6.0, 0.0, params.xi_eq, 0.0)
+    out = {} if name == "linear" else {"paper drop": State.from_psi_xi(6.0, 0.0, 0.0, 0.0)}
+    out["drop"] = drop if name != "linear" else State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
+    tr = simulate(params, out["drop"], max_events=DEEP_INDEX)
+    out["deep"] = post_impact(tr, DEEP_INDEX - 1)
     return out
 
 
-def timed(fn, repeats):
-    """(median, min, max) of impacts/s over ``repeats`` calls of fn() -> (impacts, cpu seconds)."""
-    rates = []
+def rates(fn, repeats: int) -> list:
+    """[median, min, max] of impacts/s over ``repeats`` calls of fn() -> (impacts, CPU seconds)."""
+    r = []
     for _ in range(repeats):
         n, cpu = fn()
-        rates.append(n / cpu if cpu > 0 else math.inf)
-    return statistics.median(rates), min(rates), max(rates)
+        r.append(n / cpu if cpu > 0 else math.inf)
+    return [statistics.median(r), min(r), max(r)]
 
 
-def reference_error(start, out, law):
+def bounce_timed(params, initial, events):
+    start = time.process_time()
+    tr = simulate(params, initial, max_events=events)
+    return len(tr.t), time.process_time() - start
+
+
+def heyoka_timed(params, initial, events):
+    r = HT.run(params, initial, {}, max_events=events)
+    return len(r.t), r.cpu_time
+
+
+def reference_error(law, start: Deviations, xi_eq: float, out: dict) -> float:
     """Largest relative error of one flight's (tau, x', xi', eta) against the mpmath reference."""
     rho, a, b = law
     with mp.workdps(PR.DPS + 10):
-        xi = mpf(start["xi_eq"]) + mpf(start["eta"])
-    ref = PR.reference_first_impact(GAMMA, MU, rho, a, b, start["x"], start["xdot"], start["xidot"], xi)
+        xi = mpf(xi_eq) + mpf(start.eta)  # exactly the state both solvers started from
+    ref = PR.reference_first_impact(GAMMA, MU, rho, a, b, start.x, start.xdot, start.xidot, xi)
     with mp.workdps(PR.DPS):
-        eta_ref = ref["xi"] - mpf(start["xi_eq"])
+        eta_ref = ref["xi"] - mpf(xi_eq)
         errs = [abs((mpf(out[k]) - ref[k]) / ref[k]) for k in ("tau", "xdot", "xidot")]
-        errs.append(abs(mpf(out["eta"]) - eta_ref) / max(abs(eta_ref), mpf(1e-6) * abs(mpf(start["xi_eq"]))))
+        errs.append(abs(mpf(out["eta"]) - eta_ref) / max(abs(eta_ref), mpf(1e-6) * abs(mpf(xi_eq))))
         return float(max(errs))
 
 
-def heyoka_one(params, setting, initial):
-    res = HT.run(params, initial, setting, max_events=1)
-    if res.failure:
-        return res.extra["start"], None
-    return res.extra["start"], {"tau": res.t[0], "xdot": res.xdot[0], "xidot": res.extra["xidot"][0],
-                                "eta": res.extra["eta"][0]}
-
-
-def bounce_one(params, initial, law):
-    tr = bounce_run(params, initial, 1, law)
-    if tr is None:
-        return None
+def one_flight_bounce(params, start):
+    tr = simulate(params, start, max_events=1)
     return {"tau": tr.tau[0], "xdot": tr.xdot[0], "xidot": tr.xidot[0], "eta": tr.eta[0]}
 
 
-def depth_scan(params, setting, xi_eq, cooldown):
-    """First x' = u of DEPTHS where heyoka fails within 200 impacts: (u, failure, index, reason) or None."""
+def one_flight_heyoka(params, start):
+    res = HT.run(params, start, {}, max_events=1)
+    if res.failure:
+        return None, f"{res.failure}: {res.extra['reason']}"
+    return {"tau": res.t[0], "xdot": res.xdot[0], "xidot": res.extra["xidot"][0], "eta": res.extra["eta"][0]}, ""
+
+
+def one_step_errors(name, params, initial) -> dict:
+    """Max one-step errors of both solvers from the scene's start and bounce's states at ONE_STEP."""
+    law = LAWS[name]
+    tr = simulate(params, initial, max_events=max(ONE_STEP) + 1)
+    starts = [initial.deviations(params)] + [post_impact(tr, k) for k in ONE_STEP]
+    errs = {"bounce": [], "heyoka": []}
+    heyoka_fail = ""
+    for st in starts:
+        errs["bounce"].append(reference_error(law, st, params.xi_eq, one_flight_bounce(params, st)))
+        h, why = one_flight_heyoka(params, st)
+        if h is None:
+            heyoka_fail = heyoka_fail or why
+            errs["heyoka"].append(math.nan)
+        else:
+            errs["heyoka"].append(reference_error(law, st, params.xi_eq, h))
+    return {"states": ["start"] + [f"after impact {k + 1}" for k in ONE_STEP], "bounce": errs["bounce"],
+            "heyoka": errs["heyoka"], "bounce_max": max(errs["bounce"]),
+            "heyoka_max": None if all(map(math.isnan, errs["heyoka"])) else float(np.nanmax(errs["heyoka"])),
+            "heyoka_failure": heyoka_fail}
+
+
+def scene_row(name, params, scene, initial, args) -> dict:
+    HT.run(params, initial, {}, max_events=10)  # compile heyoka's integrator once (reused after)
+    simulate(params, initial, max_events=10)  # numba: loaded from cache, warmed
+    first = HT.run(params, initial, {}, max_events=args.heyoka_events)
+    row = {"heyoka": {"failure": first.failure, "index": first.failure_index, "reason": first.extra["reason"],
+                      "impacts": len(first.t), "cooldown_used": first.extra["cooldown"]}}
+    n_same = len(first.t) if first.failure else args.heyoka_events
+    tr = simulate(params, initial, max_events=args.events)
+    row["bounce"] = {
+        "impacts_per_s": rates(lambda: bounce_timed(params, initial, args.events), args.repeats),
+        "stop": tr.stop_reason, "all_impacts": bool((tr.kind == IMPACT).all()), "impacts": len(tr.t)}
+    row["same_impacts"] = n_same
+    if n_same > 0:  # same start, same impacts
+        row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, n_same), args.repeats)
+        row["bounce"]["impacts_per_s_same"] = rates(lambda: bounce_timed(params, initial, n_same), args.repeats)
+        row["ratio"] = row["bounce"]["impacts_per_s_same"][0] / row["heyoka"]["impacts_per_s"][0]
+        n = min(len(first.t), len(tr.t))
+        off = np.nonzero(np.abs(first.t[:n] - tr.t[:n]) > DIVERGE_REL * np.abs(tr.t[:n]))[0]
+        row["heyoka_leaves_bounce_at"] = int(off[0]) if off.size else -1
+    row["one_step"] = one_step_errors(name, params, initial)
+    return row
+
+
+def drop_windows(params, drop, repeats) -> list:
+    """impacts/s of both solvers on the windows [WINDOWS[i], WINDOWS[i+1]) of the drop (docstring, item 1)."""
+    tr = simulate(params, drop, max_events=WINDOWS[-1])
+    out = []
+    for lo, hi in zip(WINDOWS[:-1], WINDOWS[1:]):
+        start = drop if lo == 0 else post_impact(tr, lo - 1)
+        r = HT.run(params, start, {}, max_events=hi - lo)
+        row = {"from": lo, "to": hi, "x_dot_at_start": float(tr.xdot[max(lo - 1, 0)]),
+               "bounce": rates(lambda: bounce_timed(params, start, hi - lo), repeats),
+               "heyoka_failure": r.failure}
+        if not r.failure:
+            row["heyoka"] = rates(lambda: heyoka_timed(params, start, hi - lo), repeats)
+            row["ratio"] = row["bounce"][0] / row["heyoka"][0]
+        out.append(row)
+    return out
+
+
+def long_run(name, params, initial, total) -> dict:
+    """bounce over ``total`` impacts of the drop in chunks (module docstring, item 3)."""
+    law = LAWS[name]
+    state, done, cpu, worst, bad = initial, 0, 0.0, 0.0, []
+    checkpoints = {}
+    while done < total:
+        n = min(CHUNK, total - done)
+        start = time.process_time()
+        tr = simulate(params, state, max_events=n)
+        cpu += time.process_time() - start
+        if len(tr.t) != n or not (tr.kind == IMPACT).all():
+            bad.append({"chunk_start": done, "stop": tr.stop_reason, "events": len(tr.t),
+                        "non_impacts": int((tr.kind != IMPACT).sum())})
+            break
+        st0 = state.deviations(params)
+        with mp.workdps(PR.DPS + 10):
+            xi = mpf(params.xi_eq) + mpf(st0.eta)
+        ref = PR.reference_first_impact(GAMMA, MU, *law, st0.x, st0.xdot, st0.xidot, xi)
+        worst = max(worst, float(abs((mpf(tr.tau[0]) - ref["tau"]) / ref["tau"])))
+        done += n
+        state = post_impact(tr, n - 1)
+        checkpoints[done] = state
+    return {"impacts": done, "requested": total, "cpu_s": cpu, "impacts_per_s": done / cpu if cpu else None,
+            "all_impacts": not bad, "problems": bad, "first_flight_of_chunk_max_rel_err_tau": worst,
+            "skipped": 0 if (not bad and worst <= SKIP_REL) else None}, checkpoints
+
+
+def heyoka_along(params, start, cooldown) -> dict:
+    """heyoka from bounce's exact state ``start`` for CHECK_FLIGHTS impacts against bounce from the same state."""
+    r = HT.run(params, start, {"cooldown": cooldown}, max_events=CHECK_FLIGHTS)
+    tr = simulate(params, start, max_events=CHECK_FLIGHTS)
+    n = min(len(r.t), len(tr.t))
+    off = np.nonzero(np.abs(r.t[:n] - tr.t[:n]) > DIVERGE_REL * np.abs(tr.t[:n]))[0]
+    return {"failure": r.failure, "index": r.failure_index, "reason": r.extra["reason"],
+            "leaves_bounce_at": int(off[0]) if off.size else -1, "impacts": len(r.t),
+            "x_dot": start.xdot}
+
+
+def depth_scan(params, cooldown, ratio) -> dict | None:
+    """First x' = u of DEPTHS where heyoka fails within 200 impacts (module docstring, item 4b)."""
     for u in DEPTHS:
-        init = deviations(params, xi_eq, 0.0, u, 0.2 * u, 0.0)
-        res = HT.run(params, init, {**setting, "cooldown": cooldown}, max_events=200)
+        res = HT.run(params, Deviations(0.0, u, ratio * u, 0.0), {"cooldown": cooldown}, max_events=200)
         if res.failure:
-            return u, res.failure, res.failure_index, res.extra["reason"]
+            return {"u": u, "failure": res.failure, "index": res.failure_index, "reason": res.extra["reason"]}
     return None
 
 
-def run_law(name, args, out):
-    params, setting = law_setup(name)
-    law = LAWS[name]
-    rho, a, b = law
-    xi_eq = HT.spring_law(params, setting)[3]
-    alpha = MU / (3 * GAMMA) * (GAMMA / rho) ** (b / (a + 1))
-    rows = {}
-    all_scenes = scenes(name, params, setting)
-    for scene, init in all_scenes.items():
-        row = {}
-        HT.run(params, init, setting, max_events=10)  # compile once
-        first = HT.run(params, init, setting, max_events=args.heyoka_events)
-        row["heyoka"] = {"failure": first.failure, "index": first.failure_index, "reason": first.extra["reason"],
-                         "impacts": len(first.t), "cooldown_used": first.extra["cooldown"]}
-
-        def heyoka_timing():
-            r = HT.run(params, init, setting, max_events=args.heyoka_events)
-            return len(r.t), r.cpu_time
-
-        row["heyoka"]["impacts_per_s"] = timed(heyoka_timing, args.repeats)
-        tr = bounce_run(params, init, args.events, name)
-        if tr is not None:
-            def bounce_timing():
-                start = time.process_time()
-                t = bounce_run(params, init, args.events, name)
-                return len(t.t), time.process_time() - start
-
-            row["bounce"] = {"impacts_per_s": timed(bounce_timing, args.repeats), "stop": tr.stop_reason,
-                             "all_impacts": bool((tr.kind == 0).all()), "impacts": len(tr.t)}
-            h_rate = row["heyoka"]["impacts_per_s"][0]
-            row["ratio"] = row["bounce"]["impacts_per_s"][0] / h_rate if h_rate > 0 else math.inf
-            n = min(len(first.t), len(tr.t))
-            off = np.nonzero(np.abs(first.t[:n] - tr.t[:n]) > DIVERGE_REL * np.abs(tr.t[:n]))[0]
-            row["heyoka_leaves_bounce_at"] = int(off[0]) if off.size else -1
-        # one-step errors from the same float64 states
-        states = [init] + [deviations(params, first.extra["start"]["xi_eq"], 0.0, first.xdot[k],
-                                      first.extra["xidot"][k], first.extra["eta"][k])
-                           for k in range(min(args.one_step, len(first.t)))]
-        errs_h, errs_b = [], []
-        for st in states:
-            start, res_h = heyoka_one(params, setting, st)
-            if res_h is not None:
-                errs_h.append(reference_error(start, res_h, law))
-            res_b = bounce_one(params, st, name)
-            if res_b is not None:
-                dev = st.deviations(params)
-                errs_b.append(reference_error({"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": dev.eta,
-                                               "xi_eq": params.xi_eq}, res_b, law))
-        row["heyoka"]["one_step_error"] = max(errs_h) if errs_h else None
-        if errs_b:
-            row.setdefault("bounce", {})["one_step_error"] = max(errs_b)
-        rows[scene] = row
-    # heyoka's cooldown: along the deep scene and by depth
-    cool = {}
+def run_law(name, args) -> dict:
+    params = law_parameters(name)
+    rho, a, b = LAWS[name]
+    alpha = nonlin_alpha_limit(GAMMA, MU, rho, a, b)
+    all_scenes = scenes(name, params)
+    rows = {scene: scene_row(name, params, scene, init, args) for scene, init in all_scenes.items()}
+    drop = all_scenes["drop"]
+    windows = drop_windows(params, drop, args.repeats)
+    tr = simulate(params, drop, max_events=max(CHECKPOINTS))
+    checkpoints = {n: post_impact(tr, n - 1) for n in CHECKPOINTS}
+    long = None
+    if args.long:
+        long, more = long_run(name, params, drop, args.long)
+        if long["impacts"] > max(CHECKPOINTS):
+            checkpoints[long["impacts"]] = more[long["impacts"]]
     deep = all_scenes["deep"]
+    ratio = deep.xidot / deep.xdot
+    cool = {}
     for c in COOLDOWNS:
-        setting_c = {**setting, "cooldown": c}
-        r = HT.run(params, deep, setting_c, max_events=args.heyoka_events)
-        scan = depth_scan(params, setting, xi_eq, c)
-        cool[repr(c)] = {
-            "deep": {"failure": r.failure, "index": r.failure_index, "reason": r.extra["reason"],
-                     "impacts_per_s": len(r.t) / r.cpu_time if r.cpu_time > 0 else None},
-            "depth_scan": None if scan is None else {
-                "u": scan[0], "failure": scan[1], "index": scan[2], "reason": scan[3],
-                "asymptotic_impact_index": 1.0 / (alpha * scan[0])},
-        }
+        along = {str(n): heyoka_along(params, st, c) for n, st in sorted(checkpoints.items())}
+        scan = depth_scan(params, c, ratio)
+        if scan is not None:
+            scan["drop_impact_index"] = 1.0 / (alpha * scan["u"])
+        r = HT.run(params, deep, {"cooldown": c}, max_events=args.heyoka_events)
+        cool[repr(c)] = {"along": along, "depth_scan": scan,
+                         "deep_impacts_per_s": len(r.t) / r.cpu_time if r.cpu_time > 0 else None}
     clean_to = {k: (v["depth_scan"]["u"] if v["depth_scan"] else 0.0) for k, v in cool.items()}
-    best = min(cool, key=lambda k: (clean_to[k], -(cool[k]["deep"]["impacts_per_s"] or 0.0)))
-    out[name] = {"rows": rows, "cooldown": cool, "best_cooldown": best, "alpha": alpha}
+    best = min(cool, key=lambda k: (clean_to[k], -(cool[k]["deep_impacts_per_s"] or 0.0)))
+    return {"law": {"rho": rho, "a": a, "b": b}, "alpha": alpha, "rows": rows, "drop_windows": windows, "long": long,
+            "cooldown": cool, "best_cooldown": best}
 
 
 def _e(v):
-    return "n/a" if v is None else f"{v:.2e}"
+    return "  n/a  " if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.1e}"
 
 
-def print_report(res, notes):
+def _r(v):
+    return "  n/a  " if v is None else f"{v[0]:.2e} [{v[1]:.2e}, {v[2]:.2e}]"
+
+
+def print_report(res: dict, notes: list) -> None:
     print("\n".join(notes))
     for name, r in res.items():
-        print(f"\n== {name} (alpha = {r['alpha']:.4g}) ==")
+        print(f"\n== {name}: rho, a, b = {r['law']['rho']:g}, {r['law']['a']:g}, {r['law']['b']:g}; "
+              f"alpha = {r['alpha']:.4g} ==")
+        print(f"{'scene':11s} {'impacts':>7s} {'bounce impacts/s med [min, max]':33s} "
+              f"{'heyoka impacts/s med [min, max]':33s} {'ratio':>6s} {'err bounce':>10s} {'err heyoka':>10s}"
+              f"  heyoka outcome")
         for scene, row in r["rows"].items():
-            h = row["heyoka"]
-            line = f"{scene:22s} heyoka: "
-            if "impacts_per_s" in h:
-                med, lo, hi = h["impacts_per_s"]
-                line += f"{med:.3g} impacts/s [{lo:.3g}, {hi:.3g}], one-step err {_e(h['one_step_error'])}"
-            line += f", failure {h['failure'] or 'none'}@{h['index']} {h['reason']}"
-            print(line)
-            b = row.get("bounce")
-            if b and "impacts_per_s" in b:
-                med, lo, hi = b["impacts_per_s"]
-                print(f"{'':22s} bounce: {med:.3g} impacts/s [{lo:.3g}, {hi:.3g}], one-step err "
-                      f"{_e(b.get('one_step_error'))}, stop {b['stop']}, all impacts {b['all_impacts']}; "
-                      f"ratio {row['ratio']:.3g}; heyoka leaves bounce at impact {row['heyoka_leaves_bounce_at']}")
-            elif "impacts_per_s" in h:
-                print(f"{'':22s} bounce: power-law solver not available on this branch")
+            h, b, o = row["heyoka"], row["bounce"], row["one_step"]
+            out = (f"{h['failure']}@{h['index']}: {h['reason'][:70]}" if h["failure"] else "clean")
+            print(f"{scene:11s} {row['same_impacts']:7d} {_r(b.get('impacts_per_s_same')):33s} "
+                  f"{_r(h.get('impacts_per_s')):33s} {row.get('ratio', math.nan):6.1f} "
+                  f"{_e(o['bounce_max']):>10s} {_e(o['heyoka_max']):>10s}  {out}")
+        print("drop by windows of impact index (both from bounce's exact state at the window's start):")
+        for w in r["drop_windows"]:
+            print(f"  impacts [{w['from']:6d}, {w['to']:6d}) x' at start {w['x_dot_at_start']:.1e}: bounce "
+                  f"{_r(w['bounce'])}, heyoka {_r(w.get('heyoka'))}, ratio {w.get('ratio', math.nan):.2g}"
+                  + (f" (heyoka {w['heyoka_failure']})" if w["heyoka_failure"] else ""))
+        for scene, row in r["rows"].items():
+            b = row["bounce"]
+            print(f"bounce alone, {scene}: {b['impacts']} impacts, {_r(b['impacts_per_s'])} impacts/s, "
+                  f"stop {b['stop']}, all impacts {b['all_impacts']}")
+        lr = r["long"]
+        if lr:
+            print(f"long run: {lr['impacts']} of {lr['requested']} impacts in {lr['cpu_s']:.1f} s CPU "
+                  f"({lr['impacts_per_s']:.3g}/s), all impacts {lr['all_impacts']}, first flight per chunk vs mpmath "
+                  f"max rel. err {lr['first_flight_of_chunk_max_rel_err_tau']:.1e}, skipped: {lr['skipped']}")
         for c, v in r["cooldown"].items():
-            d, s = v["deep"], v["depth_scan"]
-            scan = "clean to u = %g" % DEPTHS[-1] if s is None else (
-                f"fails at u = {s['u']:g} (asymptotic n ~ {s['asymptotic_impact_index']:.2g}): "
-                f"{s['failure']}@{s['index']} {s['reason'][:90]}")
-            print(f"cooldown {c:>7s}: deep run {d['failure'] or 'clean'}@{d['index']}; depth scan: {scan}")
+            along = "; ".join(f"n={n}: " + (f"{a['failure']}@+{a['index']}" if a["failure"] else "clean")
+                              + (f" (leaves bounce @+{a['leaves_bounce_at']})" if a["leaves_bounce_at"] >= 0 else "")
+                              for n, a in v["along"].items())
+            s = v["depth_scan"]
+            scan = f"clean to x' = {DEPTHS[-1]:g}" if s is None else (
+                f"fails at x' = {s['u']:g} (drop impact n ~ {s['drop_impact_index']:.1e}): "
+                f"{s['failure']}@{s['index']} {s['reason'][:80]}")
+            print(f"cooldown {c:>6s}: {along}\n{'':17s}depth scan: {scan}")
         print(f"best cooldown setting: {r['best_cooldown']}")
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description="bounce vs heyoka on the linear and Hertz springs (module docstring).")
-    ap.add_argument("--events", type=int, default=1_000_000, help="impacts per bounce run (default 1e6)")
-    ap.add_argument("--heyoka-events", type=int, default=20_000, help="impacts per heyoka run (default 2e4)")
+    ap = argparse.ArgumentParser(description="bounce vs heyoka on the Hertz spring, same run (module docstring).")
+    ap.add_argument("--law", nargs="+", default=["hertz"], choices=list(LAWS))
+    ap.add_argument("--events", type=int, default=1_000_000, help="impacts of bounce alone (default 1e6)")
+    ap.add_argument("--heyoka-events", type=int, default=20_000, help="impacts timed for both (default 2e4)")
     ap.add_argument("--repeats", type=int, default=5, help="timing repeats (default 5)")
-    ap.add_argument("--one-step", type=int, default=2, help="post-impact states per scene for one-step errors")
-    ap.add_argument("--laws", nargs="+", default=list(LAWS), choices=list(LAWS))
-    ap.add_argument("--json", type=Path, help="also write the results here")
+    ap.add_argument("--long", type=int, default=10_000_000, help="bounce impacts of the skip check (0: none)")
+    ap.add_argument("--json", type=Path, default=ROOT / "results" / "timing" / "bench_power.json")
     args = ap.parse_args(argv)
-    notes = [pin_to_one_core(), f"heyoka {__import__('heyoka').__version__}, tol 2^-52; "
-             f"bounce impacts/s over {args.events}, heyoka over {args.heyoka_events}, medians of {args.repeats}"]
-    res = {}
-    for name in args.laws:
-        run_law(name, args, res)
+    wall = time.time()
+    load = os.getloadavg()
+    commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    notes = [pin_to_one_core(), f"heyoka {__import__('heyoka').__version__}, tol 2^-52; Python {platform.python_version()}; "
+             f"commit {commit}; load average at start {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}",
+             f"timings: process CPU time, medians of {args.repeats}; command: {' '.join(sys.argv)}"]
+    res = {name: run_law(name, args) for name in args.law}
+    load_end = os.getloadavg()
+    notes.append(f"load average at end {load_end[0]:.2f} {load_end[1]:.2f} {load_end[2]:.2f}; "
+                 f"wall time {time.time() - wall:.0f} s")
     print_report(res, notes)
-    if args.json:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        tmp = args.json.with_suffix(".tmp")
-        tmp.write_text(json.dumps({"notes": notes, "results": res}, indent=1, default=str))
-        tmp.replace(args.json)
+    args.json.parent.mkdir(parents=True, exist_ok=True)
+    tmp = args.json.with_suffix(".tmp")
+    tmp.write_text(json.dumps({"notes": notes, "results": res}, indent=1, default=str))
+    tmp.replace(args.json)
+    print(f"written {args.json}")
 
 
 if __name__ == "__main__":
