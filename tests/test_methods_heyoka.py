@@ -16,8 +16,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pytest
 from mpmath import mp, mpf
@@ -26,7 +24,7 @@ import power_reference as PR
 from bounce import Deviations, Parameters, State, simulate
 from bounce.methods import registry
 from bounce.methods import heyoka_taylor as HT
-from bounce.springs import SPRING_LAWS, SpringLaw
+from bounce.springs import SPRING_LAWS
 
 pytest.importorskip("heyoka")
 
@@ -34,34 +32,7 @@ GAMMA = MU = 0.01
 DROP = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
 
 
-@dataclass(frozen=True)
-class _PowerStandIn(SpringLaw):
-    """The power law for Parameters until bounce.springs registers its own (same contract)."""
-
-    name = "power"
-    rho: float = 1.0
-    a: float = 0.5
-    b: float = 0.5
-
-    def xi_eq(self, gamma):
-        return HT.xi_equilibrium(gamma, self.rho, self.a)
-
-    def restoring(self, xi):
-        return self.rho * xi * abs(xi) ** self.a
-
-    def damping_factor(self, xi):
-        return abs(xi) ** self.b
-
-    def potential(self, xi):
-        return self.rho * abs(xi) ** (self.a + 2) / (self.a + 2)
-
-
-def power_law(rho, a, b):
-    law = SPRING_LAWS.get("power")
-    return law(rho=rho, a=a, b=b) if law is not None else _PowerStandIn(rho, a, b)
-
-
-HERTZ = Parameters(GAMMA, MU, power_law(1.0, 0.5, 0.5))
+HERTZ = Parameters(GAMMA, MU, SPRING_LAWS["power"](rho=1.0, a=0.5, b=0.5))
 
 
 def run(params, initial, setting=None, **kw):

@@ -256,12 +256,21 @@ def test_budgets_stop_time_stepping():
 
 # --------------------------------------------------------------------------- measurement layer
 
+def _methods_slice(methods: dict, kind: str, block: str | None = None) -> dict:
+    """A study's slice of a ``methods`` section, validated and defaulted by config/schema.yaml as in the pipeline."""
+    from bounce.config import load_schema, validated
+    from bounce.studies import study_slice
+
+    schema = {**load_schema(), "required": ["methods"]}
+    return study_slice(validated({"methods": methods}, schema)["methods"], kind, block)
+
+
 def test_compare_datasets_and_figures(tmp_path):
     """A tiny work-precision and stability-map spec: every variable has units and long_name, the exact row
     scores zero error, failures are recorded, both figures are written."""
     from bounce.methods import compare
 
-    spec = {
+    methods = {
         "scenes": {"drop": {"gamma": GAMMA, "mu": MU, "initial": {"psi": 6.0, "psidot": 0.0, "xi": 0.0, "xidot": 0.0}}},
         "work_precision": {
             "scene": "drop", "n_h": 3, "y_window": {"t": [0.0, 60.0], "samples": 61},
@@ -278,8 +287,10 @@ def test_compare_datasets_and_figures(tmp_path):
                           "sweeps": [{"method": "moreau-jean", "vary": {"dt": [1e-2]}},
                                      {"method": "penalty", "curves": {"stiffness": [1e4]}, "vary": {"omega_dt": [0.4]}}]},
     }
-    wp = compare.work_precision(spec)
-    sm = compare.stability_map(spec)
+    spec_wp = _methods_slice(methods, "work_precision")
+    spec_sm = _methods_slice(methods, "stability_map")
+    wp = compare.work_precision(spec_wp)
+    sm = compare.stability_map(spec_sm)
     for ds in (wp, sm):
         for name, var in ds.variables.items():
             assert "long_name" in var.attrs and "units" in var.attrs, name
@@ -292,8 +303,51 @@ def test_compare_datasets_and_figures(tmp_path):
     assert sm["failure"].values[1, 0] == "energy_gain" and sm["failure_index"].values[1, 0] == 50
     deep = int(sm["n_impacts"].values[0, 1])  # Moreau-Jean dt = 1e-2 from the exact state after impact 1000
     assert deep == 1500 and sm["n_tracked"].values[0, 1] >= 1000
-    compare.plot_work_precision(wp, spec, [tmp_path / "wp.png"])
-    compare.plot_stability_map(sm, spec, [tmp_path / "sm.png"])
+    compare.plot_work_precision(wp, spec_wp, [tmp_path / "wp.png"])
+    compare.plot_stability_map(sm, spec_sm, [tmp_path / "sm.png"])
     assert (tmp_path / "wp.png").stat().st_size > 0 and (tmp_path / "sm.png").stat().st_size > 0
     head = compare.headline(wp, 1e-3)
     assert head["scipy"]["cpu_ratio_transient"] > 1.0
+
+
+HERTZ_DROP = {"gamma": GAMMA, "mu": MU, "spring": {"law": "power", "rho": 1.0, "a": 0.5, "b": 0.5},
+              "initial": {"psi": 6.0, "psidot": 0.0, "xi": -0.046415888336127795, "xidot": 0.0}}
+
+
+def test_compare_on_the_hertz_spring(tmp_path):
+    """The studies on a power-law scene: bounce's power-law solver is the reference (its row scores 0),
+    heyoka at machine tolerance tracks the first impacts to ~1e-12 and a loose tolerance does worse; no
+    y window (no dense output for the power law); the asymptotic constant is normalised by alpha gamma;
+    a method that simulates the linear spring only is refused with its name."""
+    pytest.importorskip("heyoka")
+    from bounce.methods import compare
+    from bounce.theory import nonlin_alpha_limit
+
+    heyoka = [{"method": "heyoka", "vary": {"tol": [1e-6, 2.0**-52]}}]
+    methods = {
+        "scenes": {"hertz": HERTZ_DROP},
+        "work_precision": {"scene": "hertz", "n_h": 5, "one_step": {"impacts": [0, 50]}, "transient_budget": 2.0,
+                           "long": {"events": 1200, "cpu_budget": 2.0},
+                           "asymptotic": {"n": [1000], "window": 50, "n_min": 1000, "spread_runs": 2},
+                           "timing": {"min_total": 0.0, "max_repeats": 1}, "sweeps": heyoka},
+        "stability_map": {"scene": "hertz", "events": 1500, "cpu_budget": 2.0, "starts": [0, 1000], "flights": 300,
+                          "sweeps": heyoka},
+    }
+    spec_wp = _methods_slice(methods, "work_precision")
+    wp = compare.work_precision(spec_wp)
+    assert list(wp["method"].values) == ["exact", "heyoka", "heyoka"] and wp.attrs["spring_law"] == "power"
+    assert float(wp["err_impact_times"][0]) == 0.0 and np.isnan(wp["err_y_rms"].values).all()
+    loose, tight = float(wp["err_impact_times"][1]), float(wp["err_impact_times"][2])
+    assert tight < 1e-12 and tight < loose
+    assert float(wp["err_one_step_max"][2]) < 1e-12
+    assert wp.attrs["asym_scale"] == GAMMA * nonlin_alpha_limit(GAMMA, MU, 1.0, 0.5, 0.5)
+    assert abs(float(wp["asym_constant_ref"][0]) - 1.0) < 0.3  # n tau_n alpha gamma near its limit 1 at n = 1000
+    spec_sm = _methods_slice(methods, "stability_map")
+    sm = compare.stability_map(spec_sm)
+    assert (sm["failure"].values == "").all() and (sm["n_impacts"].values == [[1500, 1300]] * 2).all()
+    compare.plot_work_precision(wp, spec_wp, [tmp_path / "wp.png"])
+    compare.plot_stability_map(sm, spec_sm, [tmp_path / "sm.png"])
+    assert (tmp_path / "wp.png").stat().st_size > 0 and (tmp_path / "sm.png").stat().st_size > 0
+    methods["stability_map"]["sweeps"] = [{"method": "scipy", "vary": {"rtol": [1e-6]}}]
+    with pytest.raises(ValueError, match="method 'scipy' does not simulate the 'power' spring"):
+        compare.stability_map(_methods_slice(methods, "stability_map"))

@@ -141,7 +141,7 @@ def _check_references(config: dict) -> None:
     for scene in config.get("reduced", {}).get("least_model", {}).get("scenes", {}):
         need(f"reduced.least_model.scenes.{scene}", scene, scenes, "scene")
     methods = config.get("methods", {})
-    for study in ("work_precision", "stability_map"):
+    for study in ("work_precision", "stability_map", "work_precision_hertz", "stability_map_hertz"):
         if study in methods:
             need(f"methods.{study}.scene", methods[study]["scene"], set(methods.get("scenes", {})),
                  "scene in methods.scenes")

@@ -35,6 +35,13 @@ def _least_model_slice(config: dict) -> dict:
     return dict(lm, scene_specs={name: config["scenes"][name] for name in lm["scenes"]})
 
 
+def study_slice(methods: dict, kind: str, block: str | None = None) -> dict:
+    """The slice of ``config['methods']`` one study of :mod:`bounce.methods.compare` reads: its block
+    (``block``, default ``kind``) under the key ``kind`` and the one scene it names."""
+    spec = methods[block or kind]
+    return {"scenes": {spec["scene"]: methods["scenes"][spec["scene"]]}, kind: spec}
+
+
 #: study name -> Study (one line per study)
 STUDIES = {
     "horizon": Study("bounce.methods.horizon", "horizon_dataset", "plot_horizon", lambda c: c["reduced"]["horizon"]),
@@ -44,10 +51,14 @@ STUDIES = {
                               lambda c: c["reduced"]["vs_dimer"]),
     "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice,
                          timed=True),
-    "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision", lambda c: c["methods"],
-                            timed=True),
-    "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map", lambda c: c["methods"],
-                           timed=True),
+    "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision",
+                            lambda c: study_slice(c["methods"], "work_precision"), timed=True),
+    "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map",
+                           lambda c: study_slice(c["methods"], "stability_map"), timed=True),
+    "work-precision-hertz": Study("bounce.methods.compare", "work_precision", "plot_work_precision",
+                                  lambda c: study_slice(c["methods"], "work_precision", "work_precision_hertz"), timed=True),
+    "stability-map-hertz": Study("bounce.methods.compare", "stability_map", "plot_stability_map",
+                                 lambda c: study_slice(c["methods"], "stability_map", "stability_map_hertz"), timed=True),
 }
 
 

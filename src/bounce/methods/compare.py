@@ -1,6 +1,10 @@
 """Measurement layer of the speed-vs-accuracy study: run methods over settings sweeps, score them
 against the exact solver, build xarray datasets, draw the work-precision and stability-map charts.
 
+Both spring laws: on a scene with ``spring: {law: power, ...}`` (eq. ``eq-motion-nonlin-psi-xi``)
+the reference is bounce's power-law solver (Taylor-series flights, exact to rounding) and only the
+methods whose ``laws`` include it run (heyoka; a sweep naming another is refused with its name).
+
 Why error metrics need care: the transient of the drop gamma = mu = 0.01 from
 psi(0) = 6 is chaotic (near-grazing flights multiply state errors by orders of
 magnitude within ~20 impacts), so "impact time n of method M minus impact time
@@ -14,20 +18,23 @@ meaningful:
 2. one-step errors: from exact post-impact states at chosen impact indices (the
    same float64 State fed to the exact solver and to the method), one flight:
    relative error of the flight time and of the next post-impact speed;
-3. ``err_y_rms``: RMS error of y(t) over a fixed window (inside the horizon);
-4. the asymptotic constant n tau_n mu / 3 (paper, Theorem main_thm: -> 1),
+3. ``err_y_rms``: RMS error of y(t) over a fixed window (inside the horizon; only
+   with ``y_window``, which needs the exact solver's dense output: linear spring);
+4. the asymptotic constant n tau_n c (c = mu/3 on the linear spring, Theorem
+   main_thm: -> 1; alpha gamma on the power law, :func:`asymptotic_scale`),
    median over the last ``window`` flights before each requested n and at the
    largest n the method reached, against the exact solver at the same n: the law
    is a property of the dynamics, not of one trajectory, so it survives chaos.
 
-Spec (one dict, the ``methods`` section of config/config.yaml)::
+Spec (a study's slice of the ``methods`` section of config/config.yaml, validated and
+defaulted by config/schema.yaml: :func:`bounce.studies.study_slice`)::
 
-    scenes:  {name: {gamma, mu, initial: {...}}}          # as config scenes (no stop)
-    work_precision: {scene, n_h, track_tol, y_window: {t: [a, b], samples},
+    scenes:  {name: {gamma, mu, spring, initial: {...}}}  # the one scene the study names
+    work_precision: {scene, n_h, track_tol, y_window: {t: [a, b], samples} (optional),
                      one_step: {impacts: [...]}, long: {events, cpu_budget},
-                     transient_budget, asymptotic: {n: [...], window},
+                     transient_budget, asymptotic: {n: [...], window, n_min, spread_runs, spread_eps},
                      timing: {min_total, max_repeats}, sweeps: [...]}
-    stability_map:  {scene, events, cpu_budget, track_tol, sweeps: [...]}
+    stability_map:  {scene, events, starts, flights, cpu_budget, track_tol, window, sweeps: [...]}
 
 A sweep is ``{method, fixed: {...}, curves: {key: [values]}, vary: {key: [values], ...}}``:
 one curve per combination of the ``curves`` values, along each curve the zipped
@@ -54,6 +61,7 @@ from ..events import IMPACT
 from ..model import Deviations, Parameters, State
 from ..scenes import scene_initial, scene_parameters
 from ..simulate import simulate
+from ..theory import nonlin_alpha_limit
 from . import registry
 from .base import FAILURES, MethodResult
 
@@ -82,9 +90,9 @@ def expand_sweeps(sweeps: list[dict]) -> list[dict]:
     runs = []
     for sw in sweeps:
         method = sw["method"]
-        fixed = {k: _number(v) for k, v in (sw.get("fixed", {}) or {}).items()}
-        curves = {k: [_number(v) for v in vals] for k, vals in (sw.get("curves", {}) or {}).items()}
-        vary = {k: [_number(v) for v in vals] for k, vals in (sw.get("vary", {}) or {}).items()}
+        fixed = {k: _number(v) for k, v in sw["fixed"].items()}
+        curves = {k: [_number(v) for v in vals] for k, vals in sw["curves"].items()}
+        vary = {k: [_number(v) for v in vals] for k, vals in sw["vary"].items()}
         lengths = {len(v) for v in vary.values()}
         if len(lengths) > 1:
             raise ValueError(f"sweep of {method}: the vary lists must have equal lengths, got {lengths}")
@@ -94,7 +102,7 @@ def expand_sweeps(sweeps: list[dict]) -> list[dict]:
             cur = dict(zip(keys, combo))
             named = {**{k: v for k, v in fixed.items() if k == "solver"}, **cur}
             bits = [str(v) if isinstance(v, str) else f"{k}={v:.3g}" for k, v in named.items()]
-            label = " ".join([sw.get("label", method)] + bits)
+            label = " ".join([method] + bits)
             for i in range(n):
                 var = {k: vals[i] for k, vals in vary.items()}
                 key = next(iter(vary)) if vary else ""
@@ -109,6 +117,15 @@ def _scene(spec: dict, name: str):
     scene = spec["scenes"][name]
     params = scene_parameters(scene)
     return params, scene_initial(scene, params)
+
+
+def _law_attrs(params: Parameters, ref: "Reference") -> dict:
+    """gamma, mu, the spring law and the normalisation c of the asymptotic constant, as dataset attributes."""
+    return {"gamma": params.gamma, "mu": params.mu, "spring_law": params.spring.name,
+            **{f"spring_{k}": float(v) for k, v in params.spring.parameters().items()},
+            "asym_scale": ref.asym_scale,
+            "asym_scale_note": "c with n tau_n c -> 1: mu/3 (linear spring, Theorem main_thm) or alpha gamma "
+                               "(power law, alpha of the Discussion's map)"}
 
 
 def _json(setting: dict) -> str:
@@ -139,11 +156,10 @@ class Reference:
             self.y = exact_run(params, initial, max_events=max(int(events), 1),
                                t_max=float(self.sample_times.max()) * (1 + 1e-12) + 1e-12,
                                sample_times=self.sample_times).y
-        n = np.arange(1, self.t.size + 1)
         self.tau = np.diff(np.concatenate([[0.0], self.t]))
-        self.asym = n * self.tau * params.mu / 3.0
+        self.asym_scale = asymptotic_scale(params)
         # exact runs from initial states perturbed by spread_eps (relative): the trajectory-to-trajectory
-        # spread of n tau_n mu/3 is the floor below which metric (4) cannot tell methods apart (chaos)
+        # spread of n tau_n c is the floor below which metric (4) cannot tell methods apart (chaos)
         self.perturbed = []
         rng = np.random.default_rng(12345)
         for _ in range(int(spread_runs)):
@@ -156,8 +172,8 @@ class Reference:
             self.perturbed.append(tr.t[tr.kind == IMPACT])
 
     def asym_spread(self, n_at: int, window: int) -> float:
-        """Relative standard deviation of n tau_n mu/3 at impact n_at over the perturbed exact runs."""
-        c = np.array([asymptotic_constant(t, self.params.mu, n_at, window) for t in self.perturbed])
+        """Relative standard deviation of n tau_n c at impact n_at over the perturbed exact runs."""
+        c = np.array([asymptotic_constant(t, self.asym_scale, n_at, window) for t in self.perturbed])
         c = c[np.isfinite(c)]
         return float(np.std(c) / abs(np.mean(c))) if c.size > 1 else math.nan
 
@@ -167,8 +183,20 @@ class Reference:
                           eta=float(self.eta[k])).to_state(self.params)
 
 
-def asymptotic_constant(t: np.ndarray, mu: float, n_at: int, window: int, n0: int = 0) -> float:
-    """Median of n tau_n mu/3 over the ``window`` flights ending at impact n_at (1-based n).
+def asymptotic_scale(params: Parameters) -> float:
+    """c with n tau_n c -> 1: mu/3 for the linear spring (Theorem main_thm), alpha gamma for the power law,
+    alpha = lim alpha_n of the Discussion's map (:func:`bounce.theory.nonlin_alpha_limit`; tau_n ~ Xdot_n/gamma
+    assumed as in the linear case).  Only a normalisation: every error of metric (4) is relative to the
+    exact solver's value at the same n, in which c cancels."""
+    if params.spring.name == "linear":
+        return params.mu / 3.0
+    law = params.spring.parameters()
+    return params.gamma * nonlin_alpha_limit(params.gamma, params.mu, law["rho"], law["a"], law["b"])
+
+
+def asymptotic_constant(t: np.ndarray, scale: float, n_at: int, window: int, n0: int = 0) -> float:
+    """Median of n tau_n c over the ``window`` flights ending at impact n_at (1-based n), c = ``scale``
+    (:func:`asymptotic_scale`; mu/3 on the linear spring).
 
     ``t[k]`` is the time of impact n0 + k + 1 (any time origin): n0 > 0 for a run started from the
     state after impact n0."""
@@ -178,7 +206,7 @@ def asymptotic_constant(t: np.ndarray, mu: float, n_at: int, window: int, n0: in
     lo = max(k_at - window, 1)
     n = n0 + np.arange(lo + 1, k_at + 1)
     tau = t[lo:k_at] - t[lo - 1:k_at - 1]
-    return float(np.median(n * tau * mu / 3.0))
+    return float(np.median(n * tau * scale))
 
 
 # --------------------------------------------------------------------------- running
@@ -195,7 +223,7 @@ def _timed(run, params, initial, setting, timing, **kw) -> MethodResult:
     """Run; if it took less than timing['min_total'] CPU seconds, repeat and keep the fastest CPU time."""
     res = run(params, initial, setting, **kw)
     total, best, reps = res.cpu_time, res.cpu_time, 1
-    while total < timing.get("min_total", 0.05) and reps < timing.get("max_repeats", 20):
+    while total < timing["min_total"] and reps < timing["max_repeats"]:
         again = run(params, initial, setting, **kw)
         total += again.cpu_time
         best = min(best, again.cpu_time)
@@ -211,30 +239,38 @@ def _n_tracked(t: np.ndarray, t_ref: np.ndarray, tol: float) -> int:
     return int(bad[0]) if bad.size else n
 
 
-def _with_budget(setting: dict, budget) -> dict:
-    out = dict(setting)
-    if budget is not None and "cpu_budget" not in out:
-        out["cpu_budget"] = float(budget)
-    return out
+def _with_budget(setting: dict, budget: float) -> dict:
+    """The setting with the study's CPU budget unless it sets its own."""
+    return {"cpu_budget": float(budget), **setting}
+
+
+def _check_laws(runs: list, params, study: str) -> None:
+    """Every method of the sweeps simulates the scene's spring law (contract 5 of bounce.methods.base)."""
+    methods = registry()
+    for method in dict.fromkeys(r["method"] for r in runs):
+        if not methods[method].supports(params):
+            raise ValueError(f"{study}.sweeps: method {method!r} does not simulate the {params.spring.name!r} spring "
+                             f"of the scene (its laws: {', '.join(methods[method].laws)})")
 
 
 def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp: dict) -> dict:
     """All work-precision numbers of one (method, setting)."""
     methods = registry()
     run = methods[method].run
-    timing = wp.get("timing", {})
+    timing = wp["timing"]
     n_h = int(wp["n_h"])
-    track_tol = float(wp.get("track_tol", 1e-6))
-    win = wp["y_window"]
+    track_tol = float(wp["track_tol"])
     samples = ref.sample_times
     # past impact n_h with margin: a method whose impacts lag the exact ones must still reach n_h
-    t_stop = max(float(win["t"][1]), 1.2 * float(ref.t[n_h - 1]))
+    t_stop = 1.2 * float(ref.t[n_h - 1])
+    if samples is not None:
+        t_stop = max(t_stop, float(samples[-1]))
     base = dict(setting) if method != "exact" else {}
     _warm_up(run, params, initial, base)
     out: dict = {}
 
     # (1) + (3): the transient, to the end of the y window and past impact n_h
-    tr = _timed(run, params, initial, _with_budget(base, wp.get("transient_budget")), timing,
+    tr = _timed(run, params, initial, _with_budget(base, wp["transient_budget"]), timing,
                 max_events=10 * n_h + 1000, t_max=t_stop, sample_times=samples)
     out["cpu_transient"] = tr.cpu_time
     k = min(tr.t.size, n_h)
@@ -242,11 +278,12 @@ def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp:
     out["err_impact_times"] = float(rel.max()) if k == n_h else math.nan
     out["n_tracked"] = _n_tracked(tr.t, ref.t, track_tol)
     y = tr.y
-    out["err_y_rms"] = float(np.sqrt(np.mean((y - ref.y) ** 2))) if y is not None and np.all(np.isfinite(y)) else math.nan
+    out["err_y_rms"] = (float(np.sqrt(np.mean((y - ref.y) ** 2)))
+                        if ref.y is not None and y is not None and np.all(np.isfinite(y)) else math.nan)
     out["transient_failure"] = tr.failure
 
     # (2) one flight from exact post-impact states
-    idx = [int(j) for j in wp.get("one_step", {}).get("impacts", [])]
+    idx = [int(j) for j in wp["one_step"]["impacts"]]
     e_tau, e_v, c_one = [], [], []
     for j in idx:
         if j + 1 >= ref.t.size:
@@ -255,7 +292,7 @@ def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp:
         st = ref.post_state(j)
         one_ref = simulate(params, st, max_events=1)
         tau_ref, v_ref = float(one_ref.t[0]), float(one_ref.xdot[0])
-        r1 = _timed(run, params, st, _with_budget(base, wp.get("transient_budget")), timing,
+        r1 = _timed(run, params, st, _with_budget(base, wp["transient_budget"]), timing,
                     max_events=1, t_max=20.0 * tau_ref + 1.0)
         if r1.t.size and np.isfinite(r1.xdot[0]):
             e_tau.append(abs(float(r1.t[0]) - tau_ref) / tau_ref)
@@ -266,8 +303,8 @@ def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp:
     out["err_flight_time"], out["err_speed"], out["cpu_one_step"] = e_tau, e_v, c_one
 
     # (4) the long run: impacts per CPU second, asymptotic constant, failure
-    long = wp.get("long", {})
-    lr = run(params, initial, _with_budget(base, long.get("cpu_budget")), max_events=int(long.get("events", 10000)))
+    long = wp["long"]
+    lr = run(params, initial, _with_budget(base, long["cpu_budget"]), max_events=int(long["events"]))
     n_done = int(lr.t.size)
     out["n_impacts"] = n_done
     out["cpu_long"] = lr.cpu_time
@@ -275,14 +312,14 @@ def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp:
     out["failure"] = lr.failure
     out["failure_index"] = int(lr.failure_index)
     out["n_tracked_long"] = _n_tracked(lr.t, ref.t, track_tol)
-    asym = wp.get("asymptotic", {})
-    window = int(asym.get("window", 100))
-    out["asym_constant"] = [asymptotic_constant(lr.t, params.mu, int(n), window) for n in asym.get("n", [])]
-    n_min = int(asym.get("n_min", 1000))
-    usable = n_min <= n_done <= ref.t.size
-    out["asym_constant_last"] = asymptotic_constant(lr.t, params.mu, n_done, window) if usable else math.nan
+    asym = wp["asymptotic"]
+    window = int(asym["window"])
+    scale = ref.asym_scale
+    out["asym_constant"] = [asymptotic_constant(lr.t, scale, int(n), window) for n in asym["n"]]
+    usable = int(asym["n_min"]) <= n_done <= ref.t.size
+    out["asym_constant_last"] = asymptotic_constant(lr.t, scale, n_done, window) if usable else math.nan
     out["asym_n_last"] = n_done
-    out["asym_constant_last_ref"] = asymptotic_constant(ref.t, params.mu, n_done, window) if usable else math.nan
+    out["asym_constant_last_ref"] = asymptotic_constant(ref.t, scale, n_done, window) if usable else math.nan
     out["asym_spread_last"] = ref.asym_spread(n_done, window) if usable else math.nan
     return out
 
@@ -298,16 +335,19 @@ def work_precision(spec: dict) -> xr.Dataset:
     asymptotic constants over ``asym_n``) for the sweeps of ``spec['work_precision']``."""
     wp = spec["work_precision"]
     params, initial = _scene(spec, wp["scene"])
-    win = wp["y_window"]
-    samples = np.linspace(float(win["t"][0]), float(win["t"][1]), int(win.get("samples", 1001)))
-    asym_n = [int(n) for n in wp.get("asymptotic", {}).get("n", [])]
-    idx = [int(j) for j in wp.get("one_step", {}).get("impacts", [])]
-    ref_events = max([int(wp["n_h"]) + 1, int(wp.get("long", {}).get("events", 10000)), *(j + 2 for j in idx), *asym_n])
-    asym = wp.get("asymptotic", {})
-    ref = Reference(params, initial, ref_events, samples, spread_runs=int(asym.get("spread_runs", 8)),
-                    spread_eps=float(asym.get("spread_eps", 1e-9)))
+    samples = None
+    if "y_window" in wp:  # optional: dense output of the exact solver exists for the linear spring only
+        win = wp["y_window"]
+        samples = np.linspace(float(win["t"][0]), float(win["t"][1]), int(win["samples"]))
+    asym = wp["asymptotic"]
+    asym_n = [int(n) for n in asym["n"]]
+    idx = [int(j) for j in wp["one_step"]["impacts"]]
+    ref_events = max([int(wp["n_h"]) + 1, int(wp["long"]["events"]), *(j + 2 for j in idx), *asym_n])
+    ref = Reference(params, initial, ref_events, samples, spread_runs=int(asym["spread_runs"]),
+                    spread_eps=float(asym["spread_eps"]))
     runs = [{"method": "exact", "setting": {}, "label": "exact", "key": "", "value": math.nan}]
-    runs += expand_sweeps(wp.get("sweeps", []))
+    runs += expand_sweeps(wp["sweeps"])
+    _check_laws(runs, params, "work_precision")
     rows = []
     for i, r in enumerate(runs):
         rows.append(measure_run(r["method"], r["setting"], params, initial, ref, wp))
@@ -319,7 +359,7 @@ def work_precision(spec: dict) -> xr.Dataset:
 
 def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
     wp = spec["work_precision"]
-    asym = wp.get("asymptotic", {})
+    window = int(wp["asymptotic"]["window"])
     nr = len(runs)
 
     def col(name, dtype=float):
@@ -357,18 +397,18 @@ def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
             "n_tracked_long": (run_dim, col("n_tracked_long", np.int64), _attrs(
                 "number of leading impacts tracked to track_tol in the long run", "1")),
             "asym_constant": (("run", "asym_n"), np.array([r["asym_constant"] for r in rows]).reshape(nr, len(asym_n)),
-                              _attrs("median of n tau_n mu/3 over the window of flights ending at impact n", "1")),
-            "asym_constant_ref": (("asym_n",), np.array([asymptotic_constant(ref.t, params.mu, n, int(asym.get("window", 100))) for n in asym_n]),
-                                  _attrs("n tau_n mu/3 of the exact solver (same window)", "1")),
+                              _attrs("median of n tau_n c over the window of flights ending at impact n (c: attribute asym_scale)", "1")),
+            "asym_constant_ref": (("asym_n",), np.array([asymptotic_constant(ref.t, ref.asym_scale, n, window) for n in asym_n]),
+                                  _attrs("n tau_n c of the exact solver (same window)", "1")),
             "asym_constant_last": (run_dim, col("asym_constant_last"), _attrs(
-                "median of n tau_n mu/3 over the last window of flights of the long run", "1")),
+                "median of n tau_n c over the last window of flights of the long run", "1")),
             "asym_constant_last_ref": (run_dim, col("asym_constant_last_ref"), _attrs(
-                "exact solver's n tau_n mu/3 at the same n as asym_constant_last", "1")),
+                "exact solver's n tau_n c at the same n as asym_constant_last", "1")),
             "asym_n_last": (run_dim, col("asym_n_last", np.int64), _attrs("largest impact index n reached (1-based)", "1")),
             "asym_spread_last": (run_dim, col("asym_spread_last"), _attrs(
-                "chaos floor of metric (4) at asym_n_last: relative std of n tau_n mu/3 over exact runs from "
+                "chaos floor of metric (4) at asym_n_last: relative std of n tau_n c over exact runs from "
                 "initial states perturbed by spread_eps", "1")),
-            "asym_spread": (("asym_n",), np.array([ref.asym_spread(n, int(asym.get("window", 100))) for n in asym_n]),
+            "asym_spread": (("asym_n",), np.array([ref.asym_spread(n, window) for n in asym_n]),
                             _attrs("chaos floor of metric (4) at asym_n (relative std over perturbed exact runs)", "1")),
         },
         coords={
@@ -384,7 +424,7 @@ def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
         },
     )
     ds["err_asym_constant"] = (("run", "asym_n"), np.abs(ds["asym_constant"].values / ds["asym_constant_ref"].values - 1.0),
-                               _attrs("relative error of n tau_n mu/3 against the exact solver", "1"))
+                               _attrs("relative error of n tau_n c against the exact solver", "1"))
     ds["err_flight_time_max"] = ds["err_flight_time"].max("ref_impact", skipna=False)
     ds["err_flight_time_max"].attrs = _attrs("max over ref_impact of the one-step flight-time relative error", "1")
     ds["err_one_step_max"] = np.fmax(ds["err_flight_time"], ds["err_speed"]).max("ref_impact", skipna=False)
@@ -394,9 +434,10 @@ def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
     ds["cpu_per_flight"].attrs = _attrs("mean CPU time of one flight (one-step runs)", "s")
     ds.attrs.update({
         "title": "Work-precision of general-purpose methods against the exact event-driven solver",
-        "gamma": params.gamma, "mu": params.mu, "scene": wp["scene"],
+        **_law_attrs(params, ref), "scene": wp["scene"],
         "initial": _json(spec["scenes"][wp["scene"]]["initial"]), "n_h": int(wp["n_h"]),
-        "track_tol": float(wp.get("track_tol", 1e-6)), "y_window": _json({"t": list(map(float, wp["y_window"]["t"]))}),
+        "track_tol": float(wp["track_tol"]),
+        "y_window": _json({"t": list(map(float, wp["y_window"]["t"]))} if "y_window" in wp else {}),
         "reference_impacts": int(ref.t.size), "spec": _json(wp),
         "Conventions": "CF-1.10", "units_note": "dimensionless: lengths in L, times in sqrt(m/2k), CPU in process seconds",
     })
@@ -413,13 +454,14 @@ def stability_map(spec: dict) -> xr.Dataset:
     """
     sm = spec["stability_map"]
     params, initial = _scene(spec, sm["scene"])
-    events = int(sm.get("events", 100000))
-    starts = sorted(int(n0) for n0 in sm.get("starts", [0]))
-    flights = int(sm.get("flights", events))
-    window = int(sm.get("window", 100))
+    events = int(sm["events"])
+    starts = sorted(int(n0) for n0 in sm["starts"])
+    flights = int(sm["flights"])
+    window = int(sm["window"])
     ref = Reference(params, initial, max(events, starts[-1] + flights + 1))
-    track_tol = float(sm.get("track_tol", 1e-6))
+    track_tol = float(sm["track_tol"])
     runs = expand_sweeps(sm["sweeps"])
+    _check_laws(runs, params, "stability_map")
     methods = registry()
     names = ("failure", "failure_index", "n_impacts", "cpu", "t_end", "n_tracked", "tau_last", "tau_ref_at_stop",
              "asym_last", "asym_last_ref")
@@ -429,7 +471,7 @@ def stability_map(spec: dict) -> xr.Dataset:
         _warm_up(run, params, initial, r["setting"])
         for n0 in starts:
             init = initial if n0 == 0 else ref.post_state(n0 - 1)
-            res = run(params, init, _with_budget(r["setting"], sm.get("cpu_budget")),
+            res = run(params, init, _with_budget(r["setting"], sm["cpu_budget"]),
                       max_events=events if n0 == 0 else flights)
             n = int(res.t.size)
             stop = n0 + (int(res.failure_index) if res.failure else n)  # absolute 0-based index of the stop
@@ -442,8 +484,8 @@ def stability_map(spec: dict) -> xr.Dataset:
                 "n_tracked": n0 + _n_tracked(res.t, ref.t[n0:] - t_origin, track_tol),
                 "tau_last": float(res.t[-1] - res.t[-2]) if n > 1 else math.nan,
                 "tau_ref_at_stop": float(ref.tau[min(stop, ref.t.size - 1)]),
-                "asym_last": asymptotic_constant(res.t, params.mu, n_abs, window, n0=n0) if ok else math.nan,
-                "asym_last_ref": asymptotic_constant(ref.t, params.mu, n_abs, window) if ok else math.nan,
+                "asym_last": asymptotic_constant(res.t, ref.asym_scale, n_abs, window, n0=n0) if ok else math.nan,
+                "asym_last_ref": asymptotic_constant(ref.t, ref.asym_scale, n_abs, window) if ok else math.nan,
             }
             for k in names:
                 rows[k].append(vals[k])
@@ -472,8 +514,8 @@ def stability_map(spec: dict) -> xr.Dataset:
             "tau_ref_at_stop": (dims, col("tau_ref_at_stop"), _attrs(
                 "exact flight time at the impact index where the run stopped (the time scale the method could not resolve)",
                 "sqrt(m/2k)")),
-            "asym_last": (dims, col("asym_last"), _attrs("median n tau_n mu/3 over the last window of flights", "1")),
-            "asym_last_ref": (dims, col("asym_last_ref"), _attrs("exact n tau_n mu/3 at the same n (same window)", "1")),
+            "asym_last": (dims, col("asym_last"), _attrs("median n tau_n c over the last window of flights (c: attribute asym_scale)", "1")),
+            "asym_last_ref": (dims, col("asym_last_ref"), _attrs("exact n tau_n c at the same n (same window)", "1")),
         },
         coords={
             "run": ("run", np.arange(nr), _attrs("run index", "1")),
@@ -488,7 +530,8 @@ def stability_map(spec: dict) -> xr.Dataset:
     )
     ds.attrs.update({
         "title": "Stability map: where general-purpose methods fail on the bouncing ball",
-        "gamma": params.gamma, "mu": params.mu, "scene": sm["scene"], "events": events, "flights": flights,
+        **_law_attrs(params, ref), "scene": sm["scene"], "initial": _json(spec["scenes"][sm["scene"]]["initial"]),
+        "events": events, "flights": flights,
         "track_tol": track_tol, "spec": _json(sm), "Conventions": "CF-1.10",
     })
     return ds
@@ -531,50 +574,88 @@ def _curves(ds):
         yield lab, str(ds["method"].values[idx[0]]), idx[order]
 
 
-_MARKERS = {"scipy": "o", "penalty": "s", "moreau-jean": "^", "exact": "*"}
+_MARKERS = {"scipy": "o", "penalty": "s", "moreau-jean": "^", "heyoka": "D", "exact": "*"}
+
+
+def _scene_text(ds: xr.Dataset) -> str:
+    """The scene in words for a title: spring law, gamma, mu and the drop height (mathtext)."""
+    from ..figures.common import tex_num
+
+    if ds.attrs["spring_law"] == "linear":
+        law = "linear spring"
+    else:
+        name = "Hertz spring" if ds.attrs["spring_a"] == ds.attrs["spring_b"] == 0.5 else "power-law spring"
+        law = name + r" $\rho=%s$, $a=%s$, $b=%s$" % tuple(
+            tex_num(ds.attrs[k]) for k in ("spring_rho", "spring_a", "spring_b"))
+    initial = json.loads(ds.attrs["initial"])
+    if "psi" in initial:
+        drop = r"drop from $\psi(0)=%s$" % tex_num(initial["psi"])
+        drop += r", $\xi(0)=%s$" % tex_num(initial["xi"]) if initial["xi"] != 0.0 else ""
+    else:
+        drop = "scene " + ds.attrs["scene"]
+    return r"%s, $\gamma=%s$, $\mu=%s$, %s" % (law, tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"]), drop)
+
+
+def _asym_symbol(ds: xr.Dataset) -> str:
+    """mathtext of the normalisation c of n tau_n c (mu/3 linear, alpha gamma power law)."""
+    return r"\mu/3" if ds.attrs["spring_law"] == "linear" else r"\alpha\gamma"
 
 
 def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Four log-log panels: error vs CPU time, one curve per method/setting sweep; exact as a vertical line.
+    """Log-log panels of error against CPU time, one curve per method and fixed setting (colour; marker:
+    the method), the exact solver as a dashed vertical line (its CPU time; its error is 0: it is the
+    reference).  Panel (b), y(t), only when the study has a y window (linear spring); without it the
+    legend takes its place.
 
-    Panel (d) reads the long run: a hollow marker there is a run that stopped before its last
-    impact (the stability map says why), its error taken at the last n it reached.  The dotted
-    line of (d) is the chaos floor: the relative spread of n tau_n mu/3 among exact runs from
-    initial states perturbed by spread_eps -- beyond the predictability horizon no method can
-    be closer to the reference than that."""
+    Panel (d) reads the long run: a hollow marker there is a run that failed before its last impact
+    (the stability map says why); a run cut by its CPU budget is not a failure.  Every error of (d) is
+    taken at the largest n the run reached.  The dotted line of (d) is the chaos floor: the relative
+    spread of n tau_n c among exact runs from initial states perturbed by spread_eps -- beyond the
+    predictability horizon no method can be closer to the reference than that."""
     from ..figures.common import WIDTH, plt, save, tex_num
 
     n_h = int(ds.attrs["n_h"])
-    asym = json.loads(ds.attrs["spec"]).get("asymptotic", {})
-    panels = [
-        ("cpu_transient", "err_impact_times", "CPU time, transient run [s]",
-         r"max rel. error of $t_1,\dots,t_{n_h}$, $n_h=%d$" % n_h, "(a) impact times (first $n_h$ impacts)"),
-        ("cpu_transient", "err_y_rms", "CPU time, transient run [s]", r"RMS error of $y(t)$  [$L$]",
-         r"(b) height of the upper mass on $t\in[%s]$" % ", ".join(
-             f"{v:g}" for v in json.loads(ds.attrs["y_window"])["t"])),
-        ("cpu_per_flight", "err_one_step_max", "CPU time per flight [s]", "max rel. error (time, speed)",
-         "(c) one flight from an exact post-impact state"),
-        ("cpu_per_impact", "err_asym_last", "CPU time per impact, long run [s]",
-         r"rel. error of $n\tau_n\mu/3$", "(d) asymptotic constant at the largest $n$ reached"),
-    ]
+    asym = json.loads(ds.attrs["spec"])["asymptotic"]
+    window = json.loads(ds.attrs["y_window"])
+    c = _asym_symbol(ds)
+    panel_a = ("cpu_transient", "err_impact_times", "CPU time, transient run [s]",
+               r"max rel. error of the impact times $t_1,\dots,t_{%d}$" % n_h,
+               r"(a) the first $n_h=%d$ impacts (inside the predictability horizon)" % n_h)
+    panel_b = ("cpu_transient", "err_y_rms", "CPU time, transient run [s]", r"RMS error of $y(t)$  [$L$]",
+               r"(b) height of the upper mass on $t\in[%s]$" % ", ".join(f"{v:g}" for v in window.get("t", [])))
+    panel_c = ("cpu_per_flight", "err_one_step_max", "CPU time per flight [s]",
+               "max rel. error of flight time and next speed", "(c) one flight from an exact post-impact state")
+    panel_d = ("cpu_per_impact", "err_asym_last", "CPU time per impact, long run [s]",
+               r"rel. error of $n\tau_n %s$ (exact: $\to 1$)" % c,
+               "(d) asymptotic constant at the largest $n$ reached")
+    panels = [panel_a, panel_b if window else None, panel_c, panel_d]
     ds = ds.copy()
     ds["err_asym_last"] = np.abs(ds["asym_constant_last"] / ds["asym_constant_last_ref"] - 1.0)
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 6.0))
     colors = {}
-    for ax, (xv, yv, xl, yl, title) in zip(axes.flat, panels):
+    handles = []
+    for ax, panel in zip(axes.flat, panels):
+        if panel is None:
+            continue
+        xv, yv, xl, yl, title = panel
         long_run = yv == "err_asym_last"
         for lab, method, idx in _curves(ds):
             if method == "exact":
-                ax.axvline(float(ds[xv].values[idx[0]]), color="k", ls="--", lw=0.8)
+                line = ax.axvline(float(ds[xv].values[idx[0]]), color="k", ls="--", lw=0.8)
+                if ax is axes.flat[0]:
+                    handles.append((line, "exact solver (the reference): its CPU time"))
                 continue
-            c = colors.setdefault(lab, f"C{len(colors) % 10}")
+            col = colors.setdefault(lab, f"C{len(colors) % 10}")
             x, y = ds[xv].values[idx], ds[yv].values[idx]
             ok = np.isfinite(x) & np.isfinite(y) & (y > 0) & (x > 0)
-            stopped = (ds["failure"].values[idx] != "") if long_run else np.zeros(idx.size, dtype=bool)
+            failed = np.isin(ds["failure"].values[idx], ["", "budget"], invert=True) if long_run \
+                else np.zeros(idx.size, dtype=bool)
             mk = _MARKERS.get(method, "o")
-            ax.plot(x[ok], y[ok], "-", color=c, lw=0.8, label=lab if ax is axes.flat[0] else None)
-            ax.plot(x[ok & ~stopped], y[ok & ~stopped], mk, color=c, ms=3.5)
-            ax.plot(x[ok & stopped], y[ok & stopped], mk, mfc="none", color=c, ms=3.5)
+            line, = ax.plot(x[ok], y[ok], "-", marker=mk, color=col, lw=0.8, ms=3.5)
+            ax.plot(x[ok & failed], y[ok & failed], mk, mfc="w", color=col, ms=3.5)
+            if ax is axes.flat[0]:
+                key = ds["sweep_key"].values[idx[0]]
+                handles.append((line, f"{lab} (along the line: {key})" if key else lab))
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(xl, fontsize=7)
@@ -586,16 +667,23 @@ def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
     d = axes.flat[3]
     if floor.size:
         d.axhline(float(np.median(floor)), color="0.4", ls=":", lw=1.0)
-        d.text(0.07, 0.03, "dotted: chaos floor, the spread of\n$n\\tau_n\\mu/3$ among exact runs from\n"
-               r"initial states perturbed by $%s$" "\n(median over the $n$ reached)"
-               % tex_num(asym.get("spread_eps", 1e-9)), transform=d.transAxes, fontsize=5.5, va="bottom")
-    d.text(0.98, 0.97, "hollow: the long run stopped early\n(error at the last $n$ it reached)",
-           transform=d.transAxes, fontsize=5.5, ha="right", va="top")
-    fig.legend(loc="lower center", ncol=4, fontsize=6, frameon=False, bbox_to_anchor=(0.5, 0.0))
-    fig.suptitle(r"Work-precision, $\gamma=%s$, $\mu=%s$ (drop from $\psi(0)=6$): error against CPU time; "
-                 r"dashed: the exact solver (the reference)" % (tex_num(ds.attrs["gamma"]), tex_num(ds.attrs["mu"])),
-                 fontsize=8)
-    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    notes = (f"(d): ${c}$ normalises $n\\tau_n$ to 1, its limit; hollow marker: the long run failed\n"
+             "before its last impact (the stability map says why); dotted: the chaos floor,\n"
+             r"the spread of $n\tau_n$ among exact runs from initial states perturbed by $%s$:" "\n"
+             "no method can be closer to the reference than that" % tex_num(asym["spread_eps"]))
+    lines, labels = zip(*handles)
+    if window:
+        fig.legend(lines, labels, loc="lower left", ncol=2, fontsize=6, frameon=False, bbox_to_anchor=(0.0, 0.0))
+        fig.text(0.99, 0.005, notes, ha="right", va="bottom", fontsize=5.5)
+        bottom = 0.13
+    else:
+        slot = axes.flat[1]
+        slot.axis("off")
+        slot.legend(lines, labels, loc="upper left", fontsize=6, frameon=False)
+        slot.text(0.0, 0.0, notes, transform=slot.transAxes, fontsize=5.5, va="bottom")
+        bottom = 0.0
+    fig.suptitle("Work-precision, %s: error against CPU time" % _scene_text(ds), fontsize=8)
+    fig.tight_layout(rect=(0, bottom, 1, 1))
     save(fig, outputs)
 
 
@@ -628,13 +716,14 @@ def _short(v: float) -> str:
 def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
     """One row per method and setting; for each start index n0 (one line each, n0 ticked on the top
     axis) a bar over the impact indices the run simulated, coloured by why it stopped; top axis also
-    gives the exact flight time 3/(mu n) at that index (the time scale a method must resolve)."""
+    gives the asymptotic flight time 1/(c n) at that index (c = mu/3 linear, alpha gamma power law: the
+    time scale a method must resolve)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     from ..figures.common import WIDTH, plt, save, tex_num
 
-    mu = float(ds.attrs["mu"])
+    scale = float(ds.attrs["asym_scale"])
     starts = [int(v) for v in ds["start"].values]
     rows = [(str(ds["method"].values[i]), _setting_text(str(ds["setting"].values[i])), i) for lab, m, idx in
             _curves(ds) for i in idx]
@@ -662,9 +751,11 @@ def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.set_xlabel(r"impact index $n$")
     for n0 in starts:
         ax.axvline(max(n0, 1), color="0.5", lw=0.5, ls=":")
-    sec = ax.secondary_xaxis("top", functions=(lambda n: 3.0 / (mu * np.maximum(n, 1e-30)),
-                                                lambda tau: 3.0 / (mu * np.maximum(tau, 1e-30))))
-    sec.set_xlabel(r"exact flight time $3/(\mu n)$ at that index  [$\sqrt{m/2k}$]", fontsize=7)
+    sec = ax.secondary_xaxis("top", functions=(lambda n: 1.0 / (scale * np.maximum(n, 1e-30)),
+                                                lambda tau: 1.0 / (scale * np.maximum(tau, 1e-30))))
+    law = r"$3/(\mu n)$" if ds.attrs["spring_law"] == "linear" else (
+        r"$1/(\alpha\gamma n)$, $\alpha=%s$" % tex_num(ds.attrs["asym_scale"] / ds.attrs["gamma"]))
+    sec.set_xlabel(r"asymptotic flight time %s at that index  [$\sqrt{m/2k}$]" % law, fontsize=7)
     sec.tick_params(labelsize=6)
     handles = [Patch(color="w", label="bar: the impacts a run simulated, from its start to where it stopped; "
                                       "colour: why it stopped")]
@@ -673,7 +764,6 @@ def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
                           label="start $n_0$ = " + ", ".join(f"${tex_num(n)}$" for n in starts)
                           + " (exact state there; one bar each, top to bottom)"))
     fig.legend(handles=handles, loc="lower center", ncol=1, fontsize=6.5, frameon=False)
-    fig.suptitle(r"Stability map, $\gamma=%s$, $\mu=%s$ (drop from $\psi(0)=6$): how far each method gets "
-                 r"and why it stops" % (tex_num(ds.attrs["gamma"]), tex_num(mu)), fontsize=8)
+    fig.suptitle("Stability map, %s:\nhow far each method gets and why it stops" % _scene_text(ds), fontsize=8)
     fig.tight_layout(rect=(0, (legend_in + 0.1) / fig.get_figheight(), 1, 1))
     save(fig, outputs)

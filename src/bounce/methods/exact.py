@@ -1,4 +1,5 @@
-"""Method 1: the exact event-driven solver of :mod:`bounce.simulate`."""
+"""Method 1: the exact event-driven solver of :mod:`bounce.simulate` (closed-form flights for the linear
+spring, Taylor-series flights for the power law; dense samples of y: linear spring only)."""
 
 from __future__ import annotations
 
@@ -27,4 +28,5 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
                         t_end=traj.t_end, y=y, extra={"stop_reason": traj.stop_reason})
 
 
-METHOD = MethodSpec(name="exact", run=run, settings_doc="none: exact to rounding")
+METHOD = MethodSpec(name="exact", run=run, settings_doc="none: exact to rounding (samples of y: linear spring only)",
+                    laws=("linear", "power"))

@@ -57,6 +57,7 @@ import time
 
 import numpy as np
 
+from ..theory import nonlin_equilibrium_xi
 from .base import MethodResult, MethodSpec
 
 DEFAULTS = {"rho": None, "a": None, "b": None, "tol": 2.0**-52, "cooldown": None, "high_accuracy": False,
@@ -73,7 +74,7 @@ def spring_law(params, cfg) -> tuple[float, float, float, float]:
     law = {"rho": 1.0, "a": 0.0, "b": 0.0}
     if spring.name != "linear":
         law.update({k: float(v) for k, v in spring.parameters().items() if k in law})
-    override = {k: float(cfg[k]) for k in law if cfg.get(k) is not None}
+    override = {k: float(cfg[k]) for k in law if cfg[k] is not None}
     law.update(override)
     rho, a, b = law["rho"], law["a"], law["b"]
     if not (rho > 0.0 and math.isfinite(rho)):
@@ -81,13 +82,8 @@ def spring_law(params, cfg) -> tuple[float, float, float, float]:
     for name, v in (("a", a), ("b", b)):
         if not (v >= 0.0 and math.isfinite(v)):
             raise ValueError(f"{name} must be >= 0 (allowed range: [0, inf)), got {v!r}")
-    xi_eq = xi_equilibrium(params.gamma, rho, a) if override else params.xi_eq
+    xi_eq = nonlin_equilibrium_xi(params.gamma, rho, a) if override else params.xi_eq
     return rho, a, b, xi_eq
-
-
-def xi_equilibrium(gamma: float, rho: float, a: float) -> float:
-    """xi_eq = -(gamma/rho)^(1/(a+1)) (eq. nonlin-equilibrium-xi)."""
-    return -((gamma / rho) ** (1.0 / (a + 1.0)))
 
 
 @functools.cache
