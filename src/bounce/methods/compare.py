@@ -577,6 +577,18 @@ def _curves(ds):
 _MARKERS = {"scipy": "o", "penalty": "s", "moreau-jean": "^", "heyoka": "D", "exact": "*"}
 
 
+def _decades(ax) -> None:
+    """Log axes spanning whole decades, labelled at the decades only (no crowded minor labels)."""
+    from matplotlib.ticker import NullFormatter
+
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        lo, hi = 10.0 ** math.floor(math.log10(lo)), 10.0 ** math.ceil(math.log10(hi))
+        (ax.set_xlim if axis is ax.xaxis else ax.set_ylim)(lo, hi)
+        axis.set_minor_formatter(NullFormatter())
+
+
 def _scene_text(ds: xr.Dataset) -> str:
     """The scene in words for a title: spring law, gamma, mu and the drop height (mathtext)."""
     from ..figures.common import tex_num
@@ -656,8 +668,7 @@ def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
             if ax is axes.flat[0]:
                 key = ds["sweep_key"].values[idx[0]]
                 handles.append((line, f"{lab} (along the line: {key})" if key else lab))
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        _decades(ax)
         ax.set_xlabel(xl, fontsize=7)
         ax.set_ylabel(yl, fontsize=7)
         ax.set_title(title, fontsize=7, loc="left")
@@ -667,20 +678,20 @@ def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
     d = axes.flat[3]
     if floor.size:
         d.axhline(float(np.median(floor)), color="0.4", ls=":", lw=1.0)
-    notes = (f"(d): ${c}$ normalises $n\\tau_n$ to 1, its limit; hollow marker: the long run failed\n"
-             "before its last impact (the stability map says why); dotted: the chaos floor,\n"
-             r"the spread of $n\tau_n$ among exact runs from initial states perturbed by $%s$:" "\n"
-             "no method can be closer to the reference than that" % tex_num(asym["spread_eps"]))
+    notes = [f"(d): ${c}$ normalises $n\\tau_n$ to 1, its limit; hollow marker: the long run failed",
+             "before its last impact (the stability map says why); dotted: the chaos floor,",
+             r"the spread of $n\tau_n$ among exact runs from initial states perturbed by $%s$:"
+             % tex_num(asym["spread_eps"]), "no method can be closer to the reference than that"]
     lines, labels = zip(*handles)
     if window:
-        fig.legend(lines, labels, loc="lower left", ncol=2, fontsize=6, frameon=False, bbox_to_anchor=(0.0, 0.0))
-        fig.text(0.99, 0.005, notes, ha="right", va="bottom", fontsize=5.5)
-        bottom = 0.13
+        fig.legend(lines, labels, loc="lower center", ncol=3, fontsize=6, frameon=False, bbox_to_anchor=(0.5, 0.045))
+        fig.text(0.5, 0.005, " ".join(notes[:2]) + "\n" + " ".join(notes[2:]), ha="center", va="bottom", fontsize=5.5)
+        bottom = 0.15
     else:
         slot = axes.flat[1]
         slot.axis("off")
         slot.legend(lines, labels, loc="upper left", fontsize=6, frameon=False)
-        slot.text(0.0, 0.0, notes, transform=slot.transAxes, fontsize=5.5, va="bottom")
+        slot.text(0.0, 0.0, "\n".join(notes), transform=slot.transAxes, fontsize=5.5, va="bottom")
         bottom = 0.0
     fig.suptitle("Work-precision, %s: error against CPU time" % _scene_text(ds), fontsize=8)
     fig.tight_layout(rect=(0, bottom, 1, 1))
@@ -730,7 +741,7 @@ def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
     height = 0.8 / len(starts)
     used = set(ds["failure"].values.ravel().tolist())
     legend_in = 0.16 * (len(used) + 2)
-    fig, ax = plt.subplots(figsize=(WIDTH, 1.4 + legend_in + 0.11 * len(rows) * max(1.5, len(starts) / 2)))
+    fig, ax = plt.subplots(figsize=(WIDTH, 1.4 + legend_in + max(1.0, 0.11 * len(rows) * max(1.5, len(starts) / 2))))
     for r, (method, text, i) in enumerate(rows):
         for k, n0 in enumerate(starts):
             y = r - 0.4 + height * (k + 0.5)
