@@ -40,13 +40,18 @@ references), ``steps`` per flight, the cooldown heyoka used, ``start`` (the stat
 from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` (one line) on failure.
 heyoka is imported on first use, so listing the methods does not load it.
 
-Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, gamma = mu = 0.01, one core of a
-shared machine, medians of 5, two runs): 3-6e4 impacts/s on the linear drop and deep states
-(bounce 130-220x faster), 2-5e4 on Hertz; one-step errors against the mpmath reference ~3e-15 (linear), up to
-3e-13 on Hertz flights that pass xi = 0, 5e-16 deep.  With its automatic cooldown heyoka skips
-impacts once x' after an impact falls to ~3e-9 (its cooldown, ~2e-15/x', then outlasts the flight,
-~x'/gamma; asymptotic impact index ~1e9 linear, ~5e9 Hertz); a fixed cooldown of 1e-15 or 1e-12 stays clean to
-x' = 1e-11, 1e-9 fails there, 0 fails at once (the restart root at exactly x = 0).
+Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, Hertz a = b = 1/2, gamma = mu = 0.01, one
+core of a shared machine, load ~5, medians of 5; numbers in results/timing/bench_power.json): ~6e4
+impacts/s in the asymptotic regime (bounce 2.6e6, 44x), 3e3-3e4 in the drop's first 1000 impacts, whose
+long flights cross the rest length xi = 0 (there bounce's series flights are 4-10x slower than heyoka);
+one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
+(bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
+automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
+without a skip and first skips an impact at x' = 3e-9 after an impact: its cooldown, measured 10 eps/x' =
+2.2e-15/x', outlasts the flight, ~x'/gamma, once x' < sqrt(10 eps gamma) = 4.7e-9, i.e. from impact
+n ~ 1/(alpha x') ~ 3-5e9 of the drop on (alpha: bounce.theory.nonlin_alpha_limit); a fixed cooldown of
+1e-15 or 1e-12 stays clean to x' = 1e-13 (the best setting), 1e-9 fails at x' = 1e-11, and 0 fails at
+once (the restart root at exactly x = 0 is not isolated and the next one is missed).
 """
 
 from __future__ import annotations
