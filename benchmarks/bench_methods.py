@@ -1,7 +1,9 @@
 """The table behind the work-precision chart: every method and setting against the exact solver.
 
 Runs :func:`bounce.methods.compare.work_precision` with the ``methods`` section of a config
-(``config/config.yaml`` by default, ``--ci`` for the CI-sized sweep) and prints, per method and
+(``config/config.yaml`` by default, ``--ci`` for the CI-sized sweep; validated and defaulted by
+``bounce.config`` as in the pipeline; ``--law hertz``: the Hertz study, heyoka against bounce's
+power-law solver) and prints, per method and
 setting: CPU time of the transient, the relative error of the impact times within the
 predictability horizon, the RMS error of y(t), CPU time per impact of the long run, the failure
 category, and the CPU ratio to the exact solver measured in the same run.  The machine may be
@@ -9,6 +11,7 @@ shared: the ratios are what to quote.
 
     python benchmarks/bench_methods.py            # full sweep (~1.5 min on one core)
     python benchmarks/bench_methods.py --ci       # seconds
+    python benchmarks/bench_methods.py --law hertz
 """
 
 from __future__ import annotations
@@ -20,7 +23,9 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from bounce.config import validated
 from bounce.methods.compare import headline, work_precision
+from bounce.studies import study_slice
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -35,11 +40,14 @@ def _merge(base: dict, over: dict) -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ci", action="store_true", help="merge config/ci.yaml (small sweep)")
+    parser.add_argument("--law", choices=("linear", "hertz"), default="linear",
+                        help="the study's spring law (hertz: methods.work_precision_hertz)")
     args = parser.parse_args()
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     if args.ci:
         config = _merge(config, yaml.safe_load((ROOT / "config" / "ci.yaml").read_text()))
-    ds = work_precision(config["methods"])
+    block = "work_precision" if args.law == "linear" else "work_precision_hertz"
+    ds = work_precision(study_slice(validated(config)["methods"], "work_precision", block))
     exact = headline(ds)
     cpu0, per0 = exact["exact_cpu_transient"], exact["exact_cpu_per_impact"]
     print(f"work-precision on scene {ds.attrs['scene']} (gamma = {ds.attrs['gamma']}, mu = {ds.attrs['mu']}); "

@@ -16,6 +16,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from mpmath import mp, mpf
@@ -110,6 +112,18 @@ def test_cooldown_longer_than_the_flights_is_a_missed_impact():
     res = run(HERTZ, deep, {"cooldown": 1e-5}, max_events=20)
     assert res.failure == "missed_impact" and res.failure_index == 0  # the start is a restart: cooldown armed
     assert "skipped" in res.extra["reason"]
+
+
+def test_automatic_cooldown_outlasts_the_flights_below_its_threshold():
+    """heyoka's automatic cooldown after an impact is 10 eps/x' (measured); flights last ~x'/gamma, so it
+    skips the next impact once x' < sqrt(10 eps gamma) = 4.7e-9 and not above (module docstring)."""
+    eps = np.finfo(float).eps
+    threshold = math.sqrt(10.0 * eps * GAMMA)
+    above = run(HERTZ, Deviations(0.0, 2.0 * threshold, -threshold, 0.0), max_events=200)
+    assert above.failure == "" and len(above.t) == 200
+    assert above.extra["cooldown"] == pytest.approx(10.0 * eps / above.xdot[-1], rel=1e-3)
+    below = run(HERTZ, Deviations(0.0, 0.6 * threshold, -0.3 * threshold, 0.0), max_events=200)
+    assert below.failure == "missed_impact" and below.failure_index == 0
 
 
 @pytest.mark.parametrize("setting, word", [({"tol": 0.0}, "tol"), ({"cooldown": -1.0}, "cooldown"),
