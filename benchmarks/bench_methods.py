@@ -67,8 +67,8 @@ def main() -> None:
     for target in (1e-6, 1e-9, 1e-12):
         best = {k: v for k, v in headline(ds, target).items() if isinstance(v, dict)}
         print(f"cheapest per family with impact-time error <= {target:g}: " + json.dumps(
-            {k: {"setting": v["setting"], "cpu_ratio_transient": round(v["cpu_ratio_transient"]),
-                 "cpu_ratio_per_impact": round(v["cpu_ratio_per_impact"])} for k, v in best.items()}))
+            {k: {"setting": v["setting"], "cpu_ratio_transient": float(f"{v['cpu_ratio_transient']:.3g}"),
+                 "cpu_ratio_per_impact": float(f"{v['cpu_ratio_per_impact']:.3g}")} for k, v in best.items()}))
 
 
 if __name__ == "__main__":
