@@ -50,8 +50,9 @@ automatic cooldown heyoka follows bounce's exact trajectory from the states afte
 without a skip and first skips an impact at x' = 3e-9 after an impact: its cooldown, measured 10 eps/x' =
 2.2e-15/x', outlasts the flight, ~x'/gamma, once x' < sqrt(10 eps gamma) = 4.7e-9, i.e. from impact
 n ~ 1/(alpha x') ~ 3-5e9 of the drop on (alpha: bounce.theory.nonlin_alpha_limit); a fixed cooldown of
-1e-15 or 1e-12 stays clean to x' = 1e-13 (the best setting), 1e-9 fails at x' = 1e-11, and 0 fails at
-once (the restart root at exactly x = 0 is not isolated and the next one is missed).
+1e-15 or 1e-12 stays clean to x' = 1e-13 (the best setting), 1e-9 fails at x' = 1e-11, and 0 skips the
+first impact after the restart at every depth tried (measured: without a cooldown heyoka's event
+detection does not restart cleanly on the event surface x = 0, see :func:`_start`).
 """
 
 from __future__ import annotations
