@@ -385,12 +385,12 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
     """
     from bounce import Deviations
 
-    tol = float(spec.get("tol", 1e-8))
-    band = tuple(spec.get("fit_band", (1e-13, 1e-4)))
-    dps, dps_low = int(spec.get("dps", 40)), int(spec.get("dps_low", 30))
+    tol = float(spec["tol"])
+    band = tuple(spec["fit_band"])
+    dps, dps_low = int(spec["dps"]), int(spec["dps_low"])
     names = list(spec["regimes"])
     n_max = max(int(r["n_mp"]) for r in spec["regimes"].values())
-    checkpoints = [int(k) for k in spec.get("statistic_at", [1000, 10000])]
+    checkpoints = [int(k) for k in spec["statistic_at"]]
     shape = (len(names), len(PRECISIONS), n_max)
     err_t = np.full(shape, np.nan)
     err_x = np.full(shape, np.nan)
@@ -443,7 +443,7 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
                 lam_shift_n[i, j] = math.log(EPS64 / eps_p[p]) / (H[i, j] - h64)
                 lam_shift_t[i, j] = math.log(EPS64 / eps_p[p]) / (t_ref[i, H[i, j]] - t_ref[i, h64])
         # statistics beyond the horizon: float64 vs longdouble runs of n_long impacts
-        n_long = int(r.get("n_long", 0))
+        n_long = int(r["n_long"])
         if n_long:
             t0 = time.process_time()
             longs = {"float64": _float64_run(g, m, start, n_long)}

@@ -108,11 +108,11 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
     """
     drops = list(spec["drops"])
     models = ["dimer"] + [m[0] for m in RIGID_MODELS]
-    th = float(spec.get("threshold", 1e-3))
-    max_events = int(spec.get("max_events", 2_000_000))
-    t_max = float(spec.get("t_max", 1e5))
-    nb = int(spec.get("n_bounces", 100))
-    kc = int(spec.get("curve_points", 600))
+    th = float(spec["threshold"])
+    max_events = int(spec["max_events"])
+    t_max = float(spec["t_max"])
+    nb = int(spec["n_bounces"])
+    kc = int(spec["curve_points"])
     shape = (len(drops), len(models))
     t_rest = np.full(shape, np.nan)
     n_rest = np.full(shape, -1, dtype=np.int64)
@@ -285,18 +285,18 @@ class _Reference:
     def extract(self, name, cfg, out):
         p = self.params
         if name == "y_t":
-            return out.y_at(np.linspace(*cfg["window"], int(cfg.get("samples", 4001))))
+            return out.y_at(np.linspace(*cfg["window"], int(cfg["samples"])))
         if name == "r_n":
-            return _falcon_r(out.t, out.paired, int(cfg.get("n_max", 80)))
+            return _falcon_r(out.t, out.paired, int(cfg["n_max"]))
         if name == "impact_states":
-            n = int(cfg.get("n_max", self.traj.kind.size))
+            n = self.traj.kind.size if cfg["n_max"] is None else int(cfg["n_max"])
             xd = np.full(n, np.nan)
             k = min(n, out.xdot.size)
             xd[:k] = out.xdot[:k]
             return {"xdot": xd, "has_y": out.has_states}
         if name == "asymptotic_laws":
             n_ev = int(np.count_nonzero(self.traj.kind == IMPACT))
-            idx = _asym_points(n_ev, int(cfg.get("n_min", 1000)), int(cfg.get("points", 200)))
+            idx = _asym_points(n_ev, int(cfg["n_min"]), int(cfg["points"]))
             a, b = np.full(idx.size, np.nan), np.full(idx.size, np.nan)
             ok = idx < out.t.size
             ii = idx[ok]
@@ -358,13 +358,13 @@ def least_model(spec: dict) -> xr.Dataset:
          "scenes": {"rigid-fall": {"qoi": {"y_t": {"tol": 0.01, "window": [0, 420], "samples": 4201}}}, ...},
          "scene_specs": {"rigid-fall": {"gamma": ..., "mu": ..., "initial": ..., "stop": ...}, ...}}
     """
-    from ..scenes import scene_initial, scene_parameters
+    from ..scenes import scene_initial, scene_parameters, scene_stop
 
     rigid.warm_up()
     scenes = list(spec["scenes"])
-    deltas = sorted((float(d) for d in spec.get("deltas", [1e-2, 1e-4, 1e-6, 1e-8])), reverse=True)
-    n0s = sorted(int(n) for n in spec.get("n0s", [100, 1000, 10000]))
-    repeats = int(spec.get("repeats", 3))
+    deltas = sorted((float(d) for d in spec["deltas"]), reverse=True)
+    n0s = sorted(int(n) for n in spec["n0s"])
+    repeats = int(spec["repeats"])
     cands = ["exact", "contact-switch", "asymptotic-map"] + [m[0] for m in RIGID_MODELS]
     shape = (len(scenes), len(cands))
     err = np.full(shape, np.nan)
@@ -384,8 +384,8 @@ def least_model(spec: dict) -> xr.Dataset:
         qoi = spec["scenes"][sc]["qoi"]
         params = scene_parameters(sspec)
         initial = scene_initial(sspec, params)
-        st = sspec.get("stop", {})
-        stop = {"events": int(st.get("events", 1000)), "t_max": float(st.get("t_max", math.inf))}
+        stop = scene_stop(sspec)
+        stop = {"events": int(stop["events"]), "t_max": float(stop["t_max"])}
         ref = _Reference(params, initial, stop, qoi)
         n_ref_impacts = int(np.count_nonzero(ref.traj.kind == IMPACT))
         distinct = np.ones(len(cands), dtype=bool)  # False: reproduces the exact solver (not a reduced model)
