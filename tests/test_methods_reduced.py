@@ -214,13 +214,14 @@ def test_exact_cost_grows_like_exp_mu_t_over_3():
 
 
 def test_hp_flight_matches_bounce_first_impacts():
-    """The independent mpmath flights agree with bounce where both are exact (before any amplification)."""
+    """The mpmath reference (at 30 digits) and the long-double flights agree with bounce where all are exact
+    (before any amplification)."""
     p, ini = drop(0.01, 0.01, 6.0)
-    ref = horizon.hp_trajectory(0.01, 0.01, ini, 3, "mp", 30)
+    ref = horizon.reference_trajectory(0.01, 0.01, ini, 3, 30)
     f64 = simulate(p, ini, max_events=3)
     err = horizon.rel_diff(f64.t, ref["t"])
     assert np.all(err < 1e-14), err
-    ld = horizon.hp_trajectory(0.01, 0.01, ini, 3, "longdouble")
+    ld = horizon.longdouble_trajectory(0.01, 0.01, ini, 3)
     assert np.all(horizon.rel_diff(ld["t"], ref["t"]) < 1e-17)
 
 
@@ -229,7 +230,7 @@ def test_horizon_overdamped_covers_the_whole_run():
     gamma, mu = 1e-5, 2.0
     _, ini = drop(gamma, mu, 0.25)
     n = 150
-    ref = horizon.hp_trajectory(gamma, mu, ini, n, "mp", 30)
+    ref = horizon.reference_trajectory(gamma, mu, ini, n, 30)
     f64 = horizon._float64_run(gamma, mu, ini, n)
     assert ref["n"] == n == f64["n"]
     err = horizon.rel_diff(f64["t"], ref["t"])
@@ -243,9 +244,9 @@ def test_horizon_chaotic_transient():
     gamma, mu = 0.01, 0.01
     _, ini = drop(gamma, mu, 6.0)
     n = 45
-    ref = horizon.hp_trajectory(gamma, mu, ini, n, "mp", 40)
+    ref = horizon.reference_trajectory(gamma, mu, ini, n, 40)
     f64 = horizon._float64_run(gamma, mu, ini, n)
-    ld = horizon.hp_trajectory(gamma, mu, ini, n, "longdouble")
+    ld = horizon.longdouble_trajectory(gamma, mu, ini, n)
     h64 = horizon.horizon_index(horizon.rel_diff(f64["t"], ref["t"]), 1e-8)
     hld = horizon.horizon_index(horizon.rel_diff(ld["t"], ref["t"]), 1e-8)
     assert 15 <= h64 <= 25, h64
