@@ -214,13 +214,14 @@ def test_exact_cost_grows_like_exp_mu_t_over_3():
 
 
 def test_hp_flight_matches_bounce_first_impacts():
-    """The independent mpmath flights agree with bounce where both are exact (before any amplification)."""
+    """The mpmath reference (at 30 digits) and the long-double flights agree with bounce where all are exact
+    (before any amplification)."""
     p, ini = drop(0.01, 0.01, 6.0)
-    ref = horizon.hp_trajectory(0.01, 0.01, ini, 3, "mp", 30)
+    ref = horizon.reference_trajectory(0.01, 0.01, ini, 3, 30)
     f64 = simulate(p, ini, max_events=3)
     err = horizon.rel_diff(f64.t, ref["t"])
     assert np.all(err < 1e-14), err
-    ld = horizon.hp_trajectory(0.01, 0.01, ini, 3, "longdouble")
+    ld = horizon.longdouble_trajectory(0.01, 0.01, ini, 3)
     assert np.all(horizon.rel_diff(ld["t"], ref["t"]) < 1e-17)
 
 
@@ -229,7 +230,7 @@ def test_horizon_overdamped_covers_the_whole_run():
     gamma, mu = 1e-5, 2.0
     _, ini = drop(gamma, mu, 0.25)
     n = 150
-    ref = horizon.hp_trajectory(gamma, mu, ini, n, "mp", 30)
+    ref = horizon.reference_trajectory(gamma, mu, ini, n, 30)
     f64 = horizon._float64_run(gamma, mu, ini, n)
     assert ref["n"] == n == f64["n"]
     err = horizon.rel_diff(f64["t"], ref["t"])
@@ -243,10 +244,35 @@ def test_horizon_chaotic_transient():
     gamma, mu = 0.01, 0.01
     _, ini = drop(gamma, mu, 6.0)
     n = 45
-    ref = horizon.hp_trajectory(gamma, mu, ini, n, "mp", 40)
+    ref = horizon.reference_trajectory(gamma, mu, ini, n, 40)
     f64 = horizon._float64_run(gamma, mu, ini, n)
-    ld = horizon.hp_trajectory(gamma, mu, ini, n, "longdouble")
+    ld = horizon.longdouble_trajectory(gamma, mu, ini, n)
     h64 = horizon.horizon_index(horizon.rel_diff(f64["t"], ref["t"]), 1e-8)
     hld = horizon.horizon_index(horizon.rel_diff(ld["t"], ref["t"]), 1e-8)
     assert 15 <= h64 <= 25, h64
     assert hld > h64, (hld, h64)
+
+
+def test_least_model_reference_reads_a_thinned_scene():
+    """least_model's reference is the scene's dataset.  A scene thinned to its first events plus log-spaced ones
+    (keep) gives the asymptotic laws n tau_n mu/3, n Xdot_n mu/(3 gamma) at its kept impacts bit for bit as the
+    unthinned scene does at the same impacts, and the exact solver's own output meets it with error 0."""
+    from bounce.methods.reduced_compare import _Output, _Reference
+    from bounce.scenes import scene_dataset
+
+    spec = {"gamma": 1e-5, "mu": 2.0, "initial": {"psi": 0.25, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
+            "stop": {"events": 6000}}
+    qoi = {"asymptotic_laws": {"tol": 1e-3, "n_min": 1000, "points": 50}}
+    params = Parameters(1e-5, 2.0)
+    full = _Reference(params, scene_dataset(spec), qoi)
+    thin = _Reference(params, scene_dataset(dict(spec, keep={"first": 500, "log_samples": 300})), qoi)
+    assert thin.n_impacts == full.n_impacts == 6000
+    idx = thin.points(qoi["asymptotic_laws"])
+    assert 20 <= idx.size <= 50 and idx.min() >= 1000 and idx.max() <= 5998
+    assert np.all(np.isin(idx, thin.kept_impacts))
+    a_thin = thin.values["asymptotic_laws"]
+    a_full = thin.extract("asymptotic_laws", qoi["asymptotic_laws"], full.output)  # full records, same impacts
+    assert np.array_equal(a_thin, a_full)
+    p, ini = drop(1e-5, 2.0, 0.25)
+    exact_out = _Output.from_traj(simulate(p, ini, max_events=6000))
+    assert thin.error("asymptotic_laws", qoi["asymptotic_laws"], exact_out) == 0.0

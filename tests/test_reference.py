@@ -221,3 +221,23 @@ def test_one_flight_beyond_horizon(gamma, mu, psi0, n):
     cases = [(f"after exact impact {k}", (0.0,) + states[k].floats()[1:]) for k in range(max(h64 - 1, 0), n - 1)]
     bad, worst = check_states(gamma, mu, cases)
     assert not bad, f"{len(bad)} violations of {REL:g} (worst {worst}):\n" + "\n".join(bad)
+
+
+def test_impacts_at_a_given_precision():
+    """reference.impacts_at: the same impacts as trajectory(), at the digits asked for.  At DPS it is trajectory()
+    itself (bit for bit); at 30 digits on the over-damped drop (no chaotic amplification) the impact times
+    agree with the 50-digit ones to the 30-digit rounding (eps_30 ~ 1e-30, times a few hundred flights);
+    eps is 2^(1 - prec) of the 30-digit context; the caller's precision is left as it was."""
+    gamma, mu, n = 1e-5, 2.0, 40
+    start = R.Dev(0.25, 0.0, 0.0, gamma)
+    t50, _, states = R.trajectory(gamma, mu, start, n)
+    at50 = R.impacts_at(gamma, mu, start, n, R.DPS)
+    assert at50["stop"] == "max_events" and at50["n"] == n
+    assert at50["t"] == t50 and at50["xdot"] == [s.u for s in states]
+    prec = mp.prec
+    at30 = R.impacts_at(gamma, mu, start, n, 30)
+    assert mp.prec == prec
+    assert 1e-31 < float(at30["eps"]) < 1e-29
+    with mp.workdps(60):
+        err = max(abs(a / b - 1) for a, b in zip(at30["t"], t50))
+    assert 0 < err < 1e-27, err

@@ -36,6 +36,9 @@ MC = _validated("contact-monte-carlo", {
 ATLAS = _validated("asymptotic-atlas", {
     "shards": 1, "mu": {"min": 0.3, "max": 2.0, "n": 2}, "gamma": {"min": 1e-3, "max": 1e-3, "n": 1},
     "psi0": 0.25, "events": 20000, "transient": 0.1, "fit": {"n_min": 1000}, "batch": 1})
+BAND = _validated("our-r-band", {
+    "shards": 1, "mu": {"min": 0.01, "max": 0.1, "n": 2}, "u_over_uc": {"min": 0.1, "max": 30.0, "n": 8},
+    "gamma": 1e-5, "psi0": 0.25, "events": 5000, "batch": 1})
 
 
 def _ci_spec(name: str) -> dict:
@@ -70,7 +73,7 @@ def _gathered(name, spec, shards, workers):
     return gather(sweep, spec, parts[::-1])  # any order
 
 
-@pytest.mark.parametrize("name, spec", [("contact-monte-carlo", MC), ("asymptotic-atlas", ATLAS)])
+@pytest.mark.parametrize("name, spec", [("contact-monte-carlo", MC), ("asymptotic-atlas", ATLAS), ("our-r-band", BAND)])
 def test_gathered_dataset_does_not_depend_on_shards_or_workers(name, spec):
     one = _gathered(name, spec, shards=1, workers=1)
     many = _gathered(name, spec, shards=2, workers=2)
@@ -113,7 +116,22 @@ def test_atlas_reproduces_the_main_theorem_limits():
     assert np.all(np.isfinite(ds["transient"].values)) and np.all(ds["transient"].values < 1000)
 
 
-@pytest.mark.parametrize("name", ["contact-monte-carlo", "asymptotic-atlas"])
+def test_our_r_band_is_a_band_around_u_c():
+    """Eq. our-r (check restitution, claim our-r-band): 1 - r = 1 - e^{-mu T_xi} holds for the macroscopic bounces
+    well above u_c (sec. 8; within the threshold, here u/u_c ~ 30, the drop's first landings at mu = 0.01) and fails
+    at the stitch u = u_c, where the dimer's 1 - r is neither branch's.  The band's upper edge lies between them."""
+    ds = _gathered("our-r-band", BAND, shards=1, workers=1)
+    assert ds["median_err"].dims == ("mu", "u_bin") and ds["median_err"].shape == (2, 8)
+    thr = ds.attrs["our_r_threshold"]
+    low_mu = ds.sel(mu=0.01)
+    assert float(low_mu["median_err"].sel(u_bin=30.0)) < thr
+    assert float(low_mu["median_err"].sel(u_bin=1.0, method="nearest")) > thr
+    assert 1.0 < float(low_mu["u2"] / low_mu["u_c"]) < 30.0
+    # every measured bounce is in some cell or outside the grid, none twice
+    assert np.all(ds["bounces"].values.sum(axis=1) > 0) and np.all(ds["double_bounces"].values > 0)
+
+
+@pytest.mark.parametrize("name", ["contact-monte-carlo", "asymptotic-atlas", "our-r-band"])
 def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     import json
 
@@ -141,6 +159,7 @@ def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     (lambda s: s["contact-monte-carlo"].update(gamma=[1e-4, float("inf")]), "inf"),
     (lambda s: s["contact-monte-carlo"].update(n_samples=2.5), "2.5"),
     (lambda s: s.update(unknown_sweep={}), "unknown_sweep"),
+    (lambda s: s["our-r-band"]["mu"].update(max=1.5), "1.5"),
 ])
 def test_schema_rejects_bad_sweep_settings(edit, key):
     import jsonschema

@@ -31,6 +31,8 @@ B is a rigorous bound from the closed forms (:meth:`Oscillator.sup_abs`).
 from __future__ import annotations
 
 import functools
+import math
+import time
 from dataclasses import dataclass
 
 import mpmath
@@ -323,23 +325,57 @@ def backward_contact(gamma, mu, a_pre, eta, v, T, n_check: int = 24) -> tuple[De
     raise ValueError("could not find a backward flight that stays above the floor")
 
 
-@_hp
-def trajectory(gamma, mu, start: Dev, n_impacts):
-    """Impact times, flight times and post-impact states of the exact dynamics
-    (impacts only) from ``start`` at t = 0: lists of length n_impacts."""
-    g, m = M(gamma), M(mu)
-    st = Dev(*(M(v) for v in (start.x, start.u, start.a, start.eta)))
+def _impacts(g, m, st: Dev):
+    """Endless (t, tau, state after the impact) of the exact dynamics from ``st`` (mpf), at the working precision."""
     t = mpf(0)
-    ts, taus, states = [], [], []
-    for _ in range(n_impacts):
+    while True:
         fl = Flight(g, m, st.x, st.u, st.a, st.eta)
         tau = fl.first_contact()
         st = fl.impact_state(tau)
         t += tau
+        yield t, tau, st
+
+
+@_hp
+def trajectory(gamma, mu, start: Dev, n_impacts):
+    """Impact times, flight times and post-impact states of the exact dynamics
+    (impacts only) from ``start`` at t = 0: lists of length n_impacts."""
+    ts, taus, states = [], [], []
+    impacts = _impacts(M(gamma), M(mu), Dev(*(M(v) for v in (start.x, start.u, start.a, start.eta))))
+    for _, (t, tau, st) in zip(range(n_impacts), impacts):
         ts.append(t)
         taus.append(tau)
         states.append(st)
     return ts, taus, states
+
+
+def impacts_at(gamma, mu, start: Dev, n_impacts: int, dps: int, cpu_budget: float = math.inf) -> dict:
+    """The impacts of :func:`trajectory` at ``dps`` decimal digits instead of DPS, for precision studies
+    (:mod:`bounce.methods.horizon`), stopping early at a tangency the search cannot resolve or when the
+    process has used ``cpu_budget`` CPU seconds.
+
+    Returns lists ``t``, ``xdot``, ``xidot``, ``eta`` (mpf at ``dps`` digits: each value carries the
+    rounding of this precision, which is the point), ``n`` reached, ``stop`` ("max_events", "tangency"
+    or "budget"), ``eps`` = 2^(1 - prec) of the working precision and ``cpu`` seconds.
+    """
+    out = {"t": [], "xdot": [], "xidot": [], "eta": []}
+    stop = "max_events"
+    t0 = time.process_time()
+    with mp.workdps(int(dps)):
+        eps = mpf(2) ** (1 - mp.prec)
+        impacts = _impacts(M(gamma), M(mu), Dev(*(M(v) for v in (start.x, start.u, start.a, start.eta))))
+        for _ in range(int(n_impacts)):
+            try:
+                t, _, st = next(impacts)
+            except RootSearchError:
+                stop = "tangency"
+                break
+            for key, v in zip(out, (t, st.u, st.a, st.eta)):
+                out[key].append(v)
+            if time.process_time() - t0 > cpu_budget:
+                stop = "budget"
+                break
+    return {**out, "n": len(out["t"]), "stop": stop, "eps": eps, "cpu": time.process_time() - t0}
 
 
 # --------------------------------------------------------------------------

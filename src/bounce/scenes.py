@@ -41,15 +41,17 @@ def scene_initial(spec: dict, params: Parameters) -> State | Deviations:
     return State(x=init["x"], xdot=init["xdot"], y=init["y"], ydot=init["ydot"])
 
 
+def scene_stop(spec: dict) -> dict:
+    """The scene's stop rule with its absent parts filled in: events (1000), t_max (inf), energy (0: never)."""
+    return {"events": 1000, "t_max": math.inf, "energy": 0.0, **spec["stop"]}
+
+
 def run_scene(spec: dict) -> Trajectory:
     """Simulate a scene until its stop rule."""
     params = scene_parameters(spec)
-    stop = spec.get("stop", {})
-    return simulate(
-        params, scene_initial(spec, params),
-        max_events=stop.get("events", 1000), t_max=stop.get("t_max", math.inf),
-        energy_stop=stop.get("energy", 0.0),
-    )
+    stop = scene_stop(spec)
+    return simulate(params, scene_initial(spec, params), max_events=stop["events"], t_max=stop["t_max"],
+                    energy_stop=stop["energy"])
 
 
 def kept_events(n_events: int, keep: dict | None) -> np.ndarray:

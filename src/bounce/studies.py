@@ -1,8 +1,9 @@
 """The speed-against-accuracy studies of :mod:`bounce.methods`: the registry, one line per study.
 
 A study is ``build(spec) -> xr.Dataset`` plus ``plot(ds, spec, outputs)`` in one module of
-``bounce.methods``, and the slice of the validated config it takes.  The Snakefile
-(``workflow/rules/common.smk``) and the rule entry point (:mod:`bounce.tasks`) both read this table.
+``bounce.methods``, the slice of the validated config it takes and the scene datasets it reads (declared
+inputs of its rule, their paths in the slice).  The Snakefile (``workflow/rules/common.smk``,
+``methods.smk``) and the rule entry point (:mod:`bounce.tasks`) both read this table.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ class Study:
     build: str
     plot: str
     config: Callable[[dict], dict]
+    #: the scenes whose datasets (results/data/<scene>.nc, the scene rule's) the study reads
+    scenes: Callable[[dict], list] = lambda config: []
     #: the study measures CPU time (budgets, the cheapest model): its dataset and figure are timing files,
     #: not byte-reproducible by design (its CPU seconds also go to results/timing/methods/<study>-cpu.nc)
     timed: bool = False
@@ -29,10 +32,20 @@ class Study:
         return getattr(module, self.build), getattr(module, self.plot)
 
 
+def scene_file(name: str) -> str:
+    """The dataset of scene ``name`` (workflow/rules/simulate.smk)."""
+    return f"results/data/{name}.nc"
+
+
+def _least_model_scenes(config: dict) -> list:
+    return list(config["reduced"]["least_model"]["scenes"])
+
+
 def _least_model_slice(config: dict) -> dict:
-    """The least-model settings plus the specs of the scenes it names (validated to exist)."""
+    """The least-model settings plus the specs and datasets of the scenes it names (validated to exist)."""
     lm = config["reduced"]["least_model"]
-    return dict(lm, scene_specs={name: config["scenes"][name] for name in lm["scenes"]})
+    return dict(lm, scene_specs={name: config["scenes"][name] for name in lm["scenes"]},
+                scene_files={name: scene_file(name) for name in lm["scenes"]})
 
 
 def study_slice(methods: dict, kind: str, block: str | None = None) -> dict:
@@ -50,7 +63,7 @@ STUDIES = {
     "reduced-vs-dimer": Study("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer",
                               lambda c: c["reduced"]["vs_dimer"]),
     "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice,
-                         timed=True),
+                         scenes=_least_model_scenes, timed=True),
     "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision",
                             lambda c: study_slice(c["methods"], "work_precision"), timed=True),
     "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map",
@@ -65,3 +78,8 @@ STUDIES = {
 def study_slices(config: dict) -> dict:
     """name -> the config slice of each study (what its rule receives)."""
     return {name: study.config(config) for name, study in STUDIES.items()}
+
+
+def study_inputs(config: dict) -> dict:
+    """name -> the scene datasets each study reads (its rule's inputs)."""
+    return {name: [scene_file(s) for s in study.scenes(config)] for name, study in STUDIES.items()}

@@ -3,7 +3,7 @@
 so that no name is listed twice."""
 
 from bounce.figures import figure_table, sticky_dataset
-from bounce.studies import study_slices
+from bounce.studies import study_inputs, study_slices
 
 
 def as_json(obj):
@@ -36,6 +36,7 @@ CHECKS = sorted(config.get("checks", {}))
 
 # speed-vs-accuracy studies: name -> config slice (the registry bounce.studies.STUDIES)
 STUDIES = study_slices(config)
+STUDY_INPUTS = study_inputs(config)
 
 
 def figure_files():

@@ -2,7 +2,10 @@
 
 
 rule study:
-    """One study of bounce.methods (predictability horizon, contact switch, reduced models, least model)."""
+    """One study of bounce.methods (predictability horizon, contact switch, reduced models, least model), reading
+    the scene datasets it declares (bounce.studies: Study.scenes)."""
+    input:
+        lambda w: STUDY_INPUTS[w.name],
     output:
         nc="results/methods/{name}.nc",
         timing="results/timing/methods/{name}-cpu.nc",

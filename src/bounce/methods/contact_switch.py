@@ -240,8 +240,8 @@ def switch_study(spec: dict):
     warm_up()
     cases = list(spec["cases"])
     deltas = np.array(sorted((float(d) for d in spec["deltas"]), reverse=True))
-    samples = int(spec.get("samples", 20001))
-    max_events = int(spec.get("max_events", 3_000_000))
+    samples = int(spec["samples"])
+    max_events = int(spec["max_events"])
     shape = (len(cases), deltas.size)
     out = {k: np.full(shape, np.nan) for k in ("err_y_max", "err_y_rms", "err_e_max", "err_e_rel", "cpu",
                                                "t_switch", "xdot_switch", "n_impacts")}
@@ -263,7 +263,7 @@ def switch_study(spec: dict):
         e_ex = energy_excess_samples(sx, g)
         imp = ex.kind == IMPACT
         per_case["n_exact"][i] = np.count_nonzero(imp)
-        b, C = _exact_cost_fit(ex.t[imp], int(spec.get("fit_n_min", 1000)))
+        b, C = _exact_cost_fit(ex.t[imp], int(spec["fit_n_min"]))
         per_case["rate_fit"][i], per_case["prefactor_fit"][i] = b, C
         per_case["rate_theory"][i] = m / 3.0
         per_case["t_max"][i], per_case["gamma"][i], per_case["mu"][i], per_case["psi0"][i] = T, g, m, psi0
@@ -328,7 +328,7 @@ def switch_study(spec: dict):
         },
         coords={"case": cases, "delta": ("delta", deltas, {"long_name": "switch threshold delta on Xdot_n", **u})},
         attrs={"title": "Contact switch (exact until Xdot_n < delta, then the lower mass at rest) against the "
-                        "exact solver", "samples": samples, "fit_n_min": int(spec.get("fit_n_min", 1000)),
+                        "exact solver", "samples": samples, "fit_n_min": int(spec["fit_n_min"]),
                "Conventions": "CF-1.10"},
     )
     return ds
@@ -342,7 +342,7 @@ def plot_switch_study(ds, spec, outputs) -> None:
 
     fig, axes = plt.subplots(1, 3, figsize=(WIDTH, 2.7))
     a1, a2, a3 = axes
-    n_min = int(ds.attrs.get("fit_n_min", 1000))
+    n_min = int(ds.attrs["fit_n_min"])
     handles = []
     for i, case in enumerate(ds["case"].values):
         d = ds.sel(case=case)

@@ -1,17 +1,14 @@
 """Predictability horizon of the exact solver: float64 (bounce) against higher precision.
 
-The same drop is computed by bounce (float64) and by an independent
-implementation here (:func:`hp_trajectory`), written from the paper's equations
-with its own closed forms, in either
+The same drop is computed by bounce (float64), by the one high-precision reference
+:mod:`bounce.reference` at ``dps`` decimal digits (the yardstick) and at ``dps_low`` digits (a
+self-check: :func:`bounce.reference.impacts_at`), and in ``longdouble``: numpy's ``np.longdouble``,
+which on x86_64 Linux is the x87 80-bit extended format (64-bit significand, eps = 2^-63 = 1.08e-19,
+~19 significant digits; stored in 16 bytes, hence numpy's name float128 -- it is *not* IEEE quadruple
+precision).  The long-double run (:func:`longdouble_trajectory`) is a precision under test, like
+float64, not a reference: about 20x faster than mpmath, it carries the long runs.
 
-* ``mp``: mpmath with ``dps`` decimal digits (>= 30; the reference uses 40), or
-* ``longdouble``: numpy's ``np.longdouble``, which on x86_64 Linux is the x87
-  80-bit extended format (64-bit significand, 63 fraction bits + explicit
-  integer bit, eps = 2^-63 = 1.08e-19, ~19 significant digits; stored in 16
-  bytes, hence numpy's name float128 -- it is *not* IEEE quadruple precision).
-  About 20x faster than mpmath here, it carries the long runs.
-
-Independent implementation.  Free flight (eq. ``eq-motion-psi-xi``): psi'' = -gamma,
+Long-double flight (:func:`flight`).  Free flight (eq. ``eq-motion-psi-xi``): psi'' = -gamma,
 xi'' + 2 mu xi' + xi = 0, x = psi - xi.  With the fundamental solutions c, S
 (c(0) = 1, c'(0) = 0; S(0) = 0, S'(0) = 1) of the spring and its start state
 (x0, u = xdot, a = xi', eta = xi + gamma),
@@ -20,7 +17,7 @@ xi'' + 2 mu xi' + xi = 0, x = psi - xi.  With the fundamental solutions c, S
 
 with the small parts 1 - c, t - S, 1 - S' summed from their Taylor series for
 rho t <= 1 (rho the largest characteristic rate; the series is cut where the
-term falls below the working epsilon) and from the under-, critically or
+term falls below the long-double epsilon) and from the under-, critically or
 over-damped closed forms otherwise.  Impact (eq. ``collision-rule``): psi' and
 xi' are exchanged.  Root search: safe steps from the lower bound
 x(t + s) >= x(t) + x'(t) s - B s^2/2, where B = gamma + sup|xi''| is bounded by the
@@ -61,47 +58,12 @@ class Tangency(RuntimeError):
     """A contact with x' = 0 within the working precision (grazing / sticky): not handled here."""
 
 
-# --------------------------------------------------------------------------- arithmetic back-ends
-
-
-class _MP:
-    def __init__(self, dps: int):
-        import mpmath
-
-        self.m = mpmath
-        self.dps = int(dps)
-        self.name = f"mp{self.dps}"
-        with mpmath.workdps(self.dps):
-            self.eps = mpmath.mpf(2) ** (-mpmath.mp.prec + 1)
-
-    def __enter__(self):
-        self._cm = self.m.workdps(self.dps)
-        self._cm.__enter__()
-        return self
-
-    def __exit__(self, *exc):
-        return self._cm.__exit__(*exc)
-
-    def num(self, v):
-        return self.m.mpf(v)
-
-    def exp(self, v):
-        return self.m.exp(v)
-
-    def sin(self, v):
-        return self.m.sin(v)
-
-    def cos(self, v):
-        return self.m.cos(v)
-
-    def sqrt(self, v):
-        return self.m.sqrt(v)
-
-    def expm1(self, v):
-        return self.m.expm1(v)
+# --------------------------------------------------------------------------- long-double arithmetic
 
 
 class _LD:
+    """np.longdouble arithmetic with floating-point errors raised (underflow aside)."""
+
     name = "longdouble"
 
     def __init__(self):
@@ -123,22 +85,11 @@ class _LD:
     expm1 = staticmethod(np.expm1)
 
 
-def backend(name: str, dps: int = 40):
-    """``"mp"`` (mpmath, ``dps`` digits) or ``"longdouble"``."""
-    if name == "mp":
-        if dps < 30:
-            raise ValueError(f"the mpmath reference needs >= 30 digits, got {dps}")
-        return _MP(dps)
-    if name == "longdouble":
-        return _LD()
-    raise ValueError(f"unknown backend {name!r}")
-
-
 # --------------------------------------------------------------------------- the spring
 
 
 class Spring:
-    """xi'' + 2 mu xi' + xi = 0 in the working precision: small parts, closed forms, envelopes."""
+    """xi'' + 2 mu xi' + xi = 0 in long double: small parts, closed forms, envelopes."""
 
     def __init__(self, B, mu: float):
         self.B = B
@@ -272,12 +223,11 @@ def flight(B, spring: Spring, gamma, x0, u, a, eta, max_steps: int = 200_000):
     return t, -v, psid, eta_t  # after the impact: xdot = -x'(tau), xi' = psi'(tau^-), psi' = xi'(tau^-)
 
 
-def hp_trajectory(gamma: float, mu: float, start, n: int, backend_name: str = "mp", dps: int = 40,
-                  cpu_budget: float = math.inf) -> dict:
-    """Impacts of the exact dynamics in the chosen precision from the float64 state ``start``
-    (a :class:`bounce.model.Deviations`, converted exactly).  Returns numpy object/longdouble arrays
-    t, xdot, xidot, eta (working precision), ``n`` reached and why it stopped."""
-    B = backend(backend_name, dps)
+def longdouble_trajectory(gamma: float, mu: float, start, n: int) -> dict:
+    """Impacts of the exact dynamics in long double from the float64 state ``start`` (a
+    :class:`bounce.model.Deviations`, converted exactly).  Returns longdouble arrays t, xdot, xidot, eta,
+    ``n`` reached, why it stopped, eps and the CPU seconds."""
+    B = _LD()
     out = {"t": [], "xdot": [], "xidot": [], "eta": []}
     stop = "max_events"
     t0 = time.process_time()
@@ -294,16 +244,21 @@ def hp_trajectory(gamma: float, mu: float, start, n: int, backend_name: str = "m
                 break
             x = B.num(0)
             t = t + tau
-            out["t"].append(t)
-            out["xdot"].append(u)
-            out["xidot"].append(a)
-            out["eta"].append(eta)
-            if time.process_time() - t0 > cpu_budget:
-                stop = "budget"
-                break
-    dtype = object if backend_name == "mp" else np.longdouble
-    res = {k: np.array(v, dtype=dtype) for k, v in out.items()}
-    res.update(n=len(out["t"]), stop=stop, backend=B.name, eps=float(B.eps), cpu=time.process_time() - t0)
+            for key, v in zip(out, (t, u, a, eta)):
+                out[key].append(v)
+    res = {k: np.array(v, dtype=np.longdouble) for k, v in out.items()}
+    res.update(n=len(out["t"]), stop=stop, eps=float(B.eps), cpu=time.process_time() - t0)
+    return res
+
+
+def reference_trajectory(gamma: float, mu: float, start, n: int, dps: int) -> dict:
+    """Impacts of :mod:`bounce.reference` at ``dps`` digits from the float64 state ``start`` (converted
+    exactly): object arrays of mpf t, xdot, xidot, eta, ``n`` reached, why it stopped, eps and CPU seconds."""
+    from ..reference import Dev, impacts_at
+
+    run = impacts_at(gamma, mu, Dev(start.x, start.xdot, start.xidot, start.eta), n, dps)
+    res = {k: np.array(run[k], dtype=object) for k in ("t", "xdot", "xidot", "eta")}
+    res.update(n=run["n"], stop=run["stop"], eps=float(run["eps"]), cpu=run["cpu"])
     return res
 
 
@@ -385,12 +340,12 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
     """
     from bounce import Deviations
 
-    tol = float(spec.get("tol", 1e-8))
-    band = tuple(spec.get("fit_band", (1e-13, 1e-4)))
-    dps, dps_low = int(spec.get("dps", 40)), int(spec.get("dps_low", 30))
+    tol = float(spec["tol"])
+    band = tuple(spec["fit_band"])
+    dps, dps_low = int(spec["dps"]), int(spec["dps_low"])
     names = list(spec["regimes"])
     n_max = max(int(r["n_mp"]) for r in spec["regimes"].values())
-    checkpoints = [int(k) for k in spec.get("statistic_at", [1000, 10000])]
+    checkpoints = [int(k) for k in spec["statistic_at"]]
     shape = (len(names), len(PRECISIONS), n_max)
     err_t = np.full(shape, np.nan)
     err_x = np.full(shape, np.nan)
@@ -413,12 +368,12 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
         r = spec["regimes"][name]
         g, m, psi0, n = float(r["gamma"]), float(r["mu"]), float(r["psi0"]), int(r["n_mp"])
         start = Deviations(x=psi0, xdot=0.0, xidot=0.0, eta=g)  # psi(0) = psi0, xi = xi' = psi' = 0
-        ref = hp_trajectory(g, m, start, n, "mp", dps)
+        ref = reference_trajectory(g, m, start, n, dps)
         cpu_ref[i] = ref["cpu"]
         runs = {
             "float64": _float64_run(g, m, start, n),
-            "longdouble": hp_trajectory(g, m, start, n, "longdouble"),
-            "mp_low": hp_trajectory(g, m, start, n, "mp", dps_low),
+            "longdouble": longdouble_trajectory(g, m, start, n),
+            "mp_low": reference_trajectory(g, m, start, n, dps_low),
         }
         k = min(ref["n"], *(run["n"] for run in runs.values()))
         n_compared[i] = k
@@ -443,12 +398,12 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
                 lam_shift_n[i, j] = math.log(EPS64 / eps_p[p]) / (H[i, j] - h64)
                 lam_shift_t[i, j] = math.log(EPS64 / eps_p[p]) / (t_ref[i, H[i, j]] - t_ref[i, h64])
         # statistics beyond the horizon: float64 vs longdouble runs of n_long impacts
-        n_long = int(r.get("n_long", 0))
+        n_long = int(r["n_long"])
         if n_long:
             t0 = time.process_time()
             longs = {"float64": _float64_run(g, m, start, n_long)}
             cpu_long[i, 0] = time.process_time() - t0
-            ld = hp_trajectory(g, m, start, n_long, "longdouble")
+            ld = longdouble_trajectory(g, m, start, n_long)
             cpu_long[i, 1] = ld["cpu"]
             longs["longdouble"] = ld
             for j, p in enumerate(stat_prec):

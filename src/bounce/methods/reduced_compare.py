@@ -108,11 +108,11 @@ def reduced_vs_dimer(spec: dict) -> xr.Dataset:
     """
     drops = list(spec["drops"])
     models = ["dimer"] + [m[0] for m in RIGID_MODELS]
-    th = float(spec.get("threshold", 1e-3))
-    max_events = int(spec.get("max_events", 2_000_000))
-    t_max = float(spec.get("t_max", 1e5))
-    nb = int(spec.get("n_bounces", 100))
-    kc = int(spec.get("curve_points", 600))
+    th = float(spec["threshold"])
+    max_events = int(spec["max_events"])
+    t_max = float(spec["t_max"])
+    nb = int(spec["n_bounces"])
+    kc = int(spec["curve_points"])
     shape = (len(drops), len(models))
     t_rest = np.full(shape, np.nan)
     n_rest = np.full(shape, -1, dtype=np.int64)
@@ -270,38 +270,79 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
 # --------------------------------------------------------------------------- least model per scene
 
 
-def _asym_points(n_events: int, n_min: int, points: int) -> np.ndarray:
-    return np.unique(np.geomspace(n_min, n_events - 1, points).astype(np.int64))
+def _asym_points(candidates: np.ndarray, n_min: int, n_max: int, points: int) -> np.ndarray:
+    """About ``points`` log-spaced impact indices in [n_min, n_max] among ``candidates`` (the impacts the
+    reference dataset keeps): the nearest candidate to each point of a log grid, each once."""
+    pool = candidates[(candidates >= n_min) & (candidates <= n_max)]
+    if pool.size == 0:
+        return pool
+    grid = np.geomspace(max(n_min, 1), max(n_max, n_min, 1), points)
+    k = np.clip(np.searchsorted(pool, grid), 1, pool.size - 1) if pool.size > 1 else np.zeros(points, dtype=int)
+    if pool.size > 1:
+        k = np.where(np.abs(pool[k - 1] - grid) <= np.abs(pool[k] - grid), k - 1, k)
+    return np.unique(pool[k])
 
 
 class _Reference:
-    """The exact solver's trajectory of a scene and its quantities of interest."""
+    """The exact solver's trajectory of a scene, read from the scene's netCDF (made by the scene rule,
+    possibly thinned to its first events plus log-spaced ones), and its quantities of interest.
 
-    def __init__(self, params, initial, stop, qoi):
-        self.params, self.initial, self.qoi = params, initial, qoi
-        self.traj = simulate(params, initial, max_events=stop["events"], t_max=stop["t_max"])
-        self.values = {name: self.extract(name, cfg, _Output.from_traj(self.traj)) for name, cfg in qoi.items()}
+    Every QoI reads what the dataset keeps: y_t, r_n and impact_states the complete prefix of its records
+    (:func:`bounce.io.complete_prefix`; all of them for an unthinned scene), asymptotic_laws the kept impacts,
+    one record per point: at impact index e (0-based), n tau_n mu/3 = e tau[e] mu/3 with the record's own
+    flight time tau[e] = t_e - t_(e-1) (the solver's, not a difference of two rounded times), and n Xdot_n mu/(3 gamma) with n = e + 1 from its rebound speed.
+    Impact indices are event indices less the non-impact events before them, exact when every non-impact
+    event is kept (the thinned scenes keep their first events, and are impacts only after them).
+    """
+
+    def __init__(self, params, ds: xr.Dataset, qoi: dict):
+        from ..io import complete_prefix, sample_dataset
+
+        self.params, self.qoi = params, qoi
+        kind = ds["kind"].values
+        events = ds["event"].values if "event" in ds.coords else np.arange(kind.size)
+        prefix = complete_prefix(ds)
+        imp = kind == IMPACT
+        self.n_impacts = int(ds.attrs.get("n_events_simulated", kind.size)) - int(np.count_nonzero(~imp))
+        self.kept_impacts = (events - np.cumsum(~imp))[imp]
+        self.kept_tau, self.kept_xdot = ds["tau"].values[imp], ds["xdot"].values[imp]
+        pre = imp[:prefix]
+        self.output = _Output(ds["t"].values[:prefix][pre], ds["xdot"].values[:prefix][pre], True,
+                              lambda times: sample_dataset(ds, times)["y"], True, ds["tau"].values[:prefix][pre])
+        self.values = {name: self.reference_value(name, cfg) for name, cfg in qoi.items()}
+
+    def points(self, cfg) -> np.ndarray:
+        """Impact indices of the asymptotic laws: kept impacts in [n_min, last impact - 1]."""
+        return _asym_points(self.kept_impacts, int(cfg["n_min"]), self.n_impacts - 2, int(cfg["points"]))
+
+    def reference_value(self, name, cfg):
+        if name != "asymptotic_laws":
+            return self.extract(name, cfg, self.output)
+        p, idx = self.params, self.points(cfg)
+        rec = np.searchsorted(self.kept_impacts, idx)
+        a = idx * self.kept_tau[rec] * p.mu / 3.0
+        b = (idx + 1) * self.kept_xdot[rec] * p.mu / (3.0 * p.gamma)
+        return np.concatenate([a, b])
 
     def extract(self, name, cfg, out):
         p = self.params
         if name == "y_t":
-            return out.y_at(np.linspace(*cfg["window"], int(cfg.get("samples", 4001))))
+            return out.y_at(np.linspace(*cfg["window"], int(cfg["samples"])))
         if name == "r_n":
-            return _falcon_r(out.t, out.paired, int(cfg.get("n_max", 80)))
+            return _falcon_r(out.t, out.paired, int(cfg["n_max"]))
         if name == "impact_states":
-            n = int(cfg.get("n_max", self.traj.kind.size))
+            n = self.output.xdot.size if cfg["n_max"] is None else int(cfg["n_max"])
             xd = np.full(n, np.nan)
             k = min(n, out.xdot.size)
             xd[:k] = out.xdot[:k]
             return {"xdot": xd, "has_y": out.has_states}
         if name == "asymptotic_laws":
-            n_ev = int(np.count_nonzero(self.traj.kind == IMPACT))
-            idx = _asym_points(n_ev, int(cfg.get("n_min", 1000)), int(cfg.get("points", 200)))
+            idx = self.points(cfg)
             a, b = np.full(idx.size, np.nan), np.full(idx.size, np.nan)
             ok = idx < out.t.size
             ii = idx[ok]
-            a[ok] = ii * (out.t[ii] - out.t[ii - 1]) * p.mu / 3.0  # n tau_n mu/3, tau_n = t_{n+1} - t_n
-            b[ok] = ii * out.xdot[ii - 1] * p.mu / (3.0 * p.gamma)  # n Xdot_n mu/(3 gamma)
+            a[ok] = ii * out.tau[ii] * p.mu / 3.0  # n tau_n mu/3, tau_n = t_{n+1} - t_n
+            b[ok] = (ii + 1) * out.xdot[ii] * p.mu / (3.0 * p.gamma)  # n Xdot_n mu/(3 gamma), n = ii + 1
             return np.concatenate([a, b])
         raise InputError(f"unknown quantity of interest {name!r}")
 
@@ -321,10 +362,12 @@ class _Reference:
 
 
 class _Output:
-    """What a method delivers, in the form the QoIs read."""
+    """What a method delivers, in the form the QoIs read: impact times, rebound speeds and flight times
+    (the solver's own where it has them, else differences of the impact times)."""
 
-    def __init__(self, t, xdot, paired, y_func, has_states):
+    def __init__(self, t, xdot, paired, y_func, has_states, tau=None):
         self.t, self.xdot, self.paired, self.y_at, self.has_states = t, xdot, paired, y_func, has_states
+        self.tau = np.diff(t, prepend=0.0) if tau is None else tau
 
     @classmethod
     def from_traj(cls, traj):
@@ -333,7 +376,7 @@ class _Output:
         def y_at(times):
             return traj.params.y_eq + sample_trajectory(traj, times)["y_minus_yeq"]
 
-        return cls(traj.t[imp], traj.xdot[imp], True, y_at, True)
+        return cls(traj.t[imp], traj.xdot[imp], True, y_at, True, traj.tau[imp])
 
 
 def _candidate_output(name, res, params, initial, run, setting, stop) -> _Output:
@@ -356,15 +399,19 @@ def least_model(spec: dict) -> xr.Dataset:
 
         {"repeats": 3, "deltas": [...], "n0s": [...],
          "scenes": {"rigid-fall": {"qoi": {"y_t": {"tol": 0.01, "window": [0, 420], "samples": 4201}}}, ...},
-         "scene_specs": {"rigid-fall": {"gamma": ..., "mu": ..., "initial": ..., "stop": ...}, ...}}
+         "scene_specs": {"rigid-fall": {"gamma": ..., "mu": ..., "initial": ..., "stop": ...}, ...},
+         "scene_files": {"rigid-fall": "results/data/rigid-fall.nc", ...}}
+
+    The reference of each scene is its dataset (``scene_files``, made by the scene rule), not a rerun.
     """
-    from ..scenes import scene_initial, scene_parameters
+    from ..io import read_dataset
+    from ..scenes import scene_initial, scene_parameters, scene_stop
 
     rigid.warm_up()
     scenes = list(spec["scenes"])
-    deltas = sorted((float(d) for d in spec.get("deltas", [1e-2, 1e-4, 1e-6, 1e-8])), reverse=True)
-    n0s = sorted(int(n) for n in spec.get("n0s", [100, 1000, 10000]))
-    repeats = int(spec.get("repeats", 3))
+    deltas = sorted((float(d) for d in spec["deltas"]), reverse=True)
+    n0s = sorted(int(n) for n in spec["n0s"])
+    repeats = int(spec["repeats"])
     cands = ["exact", "contact-switch", "asymptotic-map"] + [m[0] for m in RIGID_MODELS]
     shape = (len(scenes), len(cands))
     err = np.full(shape, np.nan)
@@ -384,10 +431,10 @@ def least_model(spec: dict) -> xr.Dataset:
         qoi = spec["scenes"][sc]["qoi"]
         params = scene_parameters(sspec)
         initial = scene_initial(sspec, params)
-        st = sspec.get("stop", {})
-        stop = {"events": int(st.get("events", 1000)), "t_max": float(st.get("t_max", math.inf))}
-        ref = _Reference(params, initial, stop, qoi)
-        n_ref_impacts = int(np.count_nonzero(ref.traj.kind == IMPACT))
+        stop = scene_stop(sspec)
+        stop = {"events": int(stop["events"]), "t_max": float(stop["t_max"])}
+        ref = _Reference(params, read_dataset(spec["scene_files"][sc]), qoi)
+        n_ref_impacts = ref.n_impacts
         distinct = np.ones(len(cands), dtype=bool)  # False: reproduces the exact solver (not a reduced model)
         tol_text[i] = "; ".join(f"{k}: {v['tol']:g}" for k, v in qoi.items())
 

@@ -172,11 +172,13 @@ def _rigid_kernel(law, p1, p2, p3, p4, gamma, t1, u0, max_events, t_max, out_t, 
 
 
 def _law_parameters(law: int, params, setting: dict, u0: float) -> tuple[tuple, dict]:
-    """Kernel parameters (p1..p4) and the resolved setting."""
+    """Kernel parameters (p1..p4) and the resolved setting (the METHODS' documented defaults filled in:
+    r = r1 = e^{-mu T_xi} (eq. rest-coefficient-function-of-mu), t_c = T_xi, flight "rigid")."""
     gamma, mu = params.gamma, params.mu
     r_xi = rest_coefficient_function_of_mu(mu)
+    setting = {"r": r_xi, "r1": r_xi, "t_c": T_xi(mu), "flight": "rigid", **setting}
     if law == CONSTANT:
-        r = float(setting.get("r", r_xi))
+        r = float(setting["r"])
         if not 0.0 <= r <= 1.0:
             raise InputError(f"r must be in [0, 1], got {r!r}")
         return (r, 0.0, 0.0, 2.0), {"r": r}
@@ -184,19 +186,19 @@ def _law_parameters(law: int, params, setting: dict, u0: float) -> tuple[tuple, 
         if "U" in setting:
             U = float(setting["U"])
         else:
-            r1 = float(setting.get("r1", r_xi))  # r at the first impact
+            r1 = float(setting["r1"])  # r at the first impact
             U = u0 / (1.0 - r1) ** 5
         if not U > 0.0:
             raise InputError(f"U must be > 0, got {U!r}")
         return (U, 0.0, 0.0, 2.0), {"U": U}
     if law == OUR_R:
-        flight = setting.get("flight", "rigid")
+        flight = setting["flight"]
         if flight not in ("rigid", "dimer"):
             raise InputError(f"flight must be 'rigid' or 'dimer', got {flight!r}")
         uc = u_c(gamma, mu)
         return (r_xi, uc, mu / (3.0 * gamma), 2.0 if flight == "rigid" else 1.0), {"flight": flight, "u_c": uc}
-    r = float(setting.get("r", r_xi))
-    tc = float(setting.get("t_c", T_xi(mu)))
+    r = float(setting["r"])
+    tc = float(setting["t_c"])
     if not (0.0 <= r <= 1.0 and tc > 0.0):
         raise InputError(f"time-of-contact needs 0 <= r <= 1 and t_c > 0, got r={r!r}, t_c={tc!r}")
     return (r, tc, 0.0, 2.0), {"r": r, "t_c": tc}
@@ -323,9 +325,9 @@ def _asymptotic_kernel(x0, t0, gamma, mu, cubic, n_steps, t_max, out_t, out_x, o
 
 def run_asymptotic(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None):
     """Exact solver to impact n0 (setting, default 1000), then eq. restituzione (module docstring)."""
-    setting = dict(setting or {})
-    n0 = int(setting.get("n0", 1000))
-    variant = setting.get("variant", "cubic")
+    setting = {"n0": 1000, "variant": "cubic", **(setting or {})}  # the documented defaults (METHODS)
+    n0 = int(setting["n0"])
+    variant = setting["variant"]
     if variant not in ("paper", "cubic"):
         raise InputError(f"variant must be 'paper' or 'cubic', got {variant!r}")
     if n0 < 1:

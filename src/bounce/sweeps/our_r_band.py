@@ -1,0 +1,171 @@
+"""Sweep ``our-r-band``: the band of impact speeds where eq. ``our-r`` fails, over the damping mu.
+
+Eq. ``our-r`` (:func:`bounce.theory.our_r`) stitches r = e^{-mu T_xi} (large impact speeds u, the
+macroscopic bounce of sec. 8) to r = 1 - mu u/(3 gamma) (small u, eq. ``restituzione``) at
+u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.theory.u_c`).  The check ``restitution`` (claim
+``our-r-band``) finds, on one drop (gamma = 1e-5, mu = 0.01), that the law is right on both sides
+and wrong in a band [u1, u2] around u_c.  This sweep maps that band over a log grid of mu
+(under-damped, mu < 1; one item per mu): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
+rest) is simulated for ``events`` events and r is measured per macroscopic bounce exactly as the
+check does (:func:`bounce.checks.restitution.double_impact` and
+:func:`~bounce.checks.restitution.our_r_test`, imported, not re-coded): r = ratio of successive
+landing speeds u = Xdot of the lower mass, over the initial run of double impacts and then over
+every impact.  It is judged on the dissipated fraction, err = (1 - r)/(1 - r_our) - 1 (where
+1 - r ~ 1e-4, a relative error of r itself says nothing).
+
+Per mu the bounces are binned on a log grid of u/u_c (``u_over_uc``): in each (mu, u/u_c) cell the
+number of bounces, the median and largest |err| and the fraction with |err| > ``our_r_threshold``;
+per mu the band [u1, u2] (smallest and largest u of a failing bounce, as in the check).  A cell
+no bounce reached is NaN (the drop does not sample it: above sqrt(2 gamma psi0), or below the
+speed reached after ``events`` impacts, ~3 gamma/(mu n)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from ..checks.restitution import double_impact, our_r_test
+from ..io import to_dataset
+from ..model import Parameters, State
+from ..simulate import simulate
+from ..theory import u_c
+from .asymptotic_atlas import _log_edges, axis
+from .base import ITEM, Sweep
+
+NAME = "our-r-band"
+
+
+def size(spec: dict) -> int:
+    return int(spec["mu"]["n"])
+
+
+def prepare(spec: dict, items: np.ndarray) -> dict:
+    return {"mu": axis(spec["mu"])[np.asarray(items, dtype=np.int64)]}
+
+
+def bounce_errors(spec: dict, mu: float) -> dict:
+    """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band."""
+    gamma = float(spec["gamma"])
+    start = State.from_psi_xi(float(spec["psi0"]), 0.0, 0.0, 0.0)
+    ds = to_dataset(simulate(Parameters(gamma, mu), start, max_events=int(spec["events"])))
+    measured = our_r_test(ds, double_impact(ds, spec), spec)
+    return {"u": measured["u"], "err": measured["err"], "u_c": u_c(gamma, mu),
+            "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1))}
+
+
+def compute(spec: dict, inputs: dict) -> dict:
+    edges = _log_edges(axis(spec["u_over_uc"]))
+    n_bins = edges.size - 1
+    m = len(inputs["mu"])
+    out = {k: np.full((m, n_bins), np.nan) for k in ("median_err", "max_err", "fraction_failing")}
+    out["bounces"] = np.zeros((m, n_bins), dtype=np.int64)
+    for k in ("u_c", "u1", "u2", "u_min", "u_max"):
+        out[k] = np.full(m, np.nan)
+    out["double_bounces"] = np.zeros(m, dtype=np.int64)
+    thr = float(spec["our_r_threshold"])
+    for i, mu in enumerate(inputs["mu"]):
+        b = bounce_errors(spec, float(mu))
+        ok = np.isfinite(b["err"])
+        u, err = b["u"][ok], np.abs(b["err"][ok])
+        out["u_c"][i], out["u1"][i], out["u2"][i], out["double_bounces"][i] = b["u_c"], b["u1"], b["u2"], b["double"]
+        if u.size:
+            out["u_min"][i], out["u_max"][i] = u.min(), u.max()
+        cell = np.searchsorted(edges, u / b["u_c"], side="right") - 1
+        for j in range(n_bins):
+            e = err[cell == j]
+            out["bounces"][i, j] = e.size
+            if e.size:
+                out["median_err"][i, j] = np.median(e)
+                out["max_err"][i, j] = e.max()
+                out["fraction_failing"][i, j] = np.count_nonzero(e > thr) / e.size
+    return {"mu": np.asarray(inputs["mu"], dtype=float), **out}
+
+
+_C = (ITEM, "u_bin")
+VARIABLES = {
+    "mu": ((ITEM,), "damping mu = nu / sqrt(2 k m)", "1", None),
+    "median_err": (_C, "median over the cell's bounces of |(1 - r)/(1 - r_our) - 1|", "1",
+                   "r: ratio of successive landing speeds (check restitution); r_our: eq. our-r; NaN: no bounce"),
+    "max_err": (_C, "largest |(1 - r)/(1 - r_our) - 1| over the cell's bounces", "1", None),
+    "fraction_failing": (_C, "fraction of the cell's bounces with |(1 - r)/(1 - r_our) - 1| > our_r_threshold",
+                         "1", None),
+    "bounces": (_C, "macroscopic bounces whose landing speed falls in the cell", "1", None),
+    "u_c": ((ITEM,), "stitching speed u_c = 3 gamma/mu (1 - exp(-mu T_xi)) of eq. our-r", "sqrt(2k/m) L", None),
+    "u1": ((ITEM,), "band of eq. our-r: smallest landing speed of a failing bounce", "sqrt(2k/m) L",
+           "NaN: no failing bounce"),
+    "u2": ((ITEM,), "band of eq. our-r: largest landing speed of a failing bounce", "sqrt(2k/m) L",
+           "NaN: no failing bounce"),
+    "u_min": ((ITEM,), "smallest landing speed measured", "sqrt(2k/m) L", None),
+    "u_max": ((ITEM,), "largest landing speed measured", "sqrt(2k/m) L", None),
+    "double_bounces": ((ITEM,), "bounces of the initial double-impact run", "1", None),
+}
+
+
+def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
+    """mu as the item coordinate, the u/u_c bins with their edges, the settings in the attributes."""
+    centres = axis(spec["u_over_uc"])
+    ds = ds.swap_dims({ITEM: "mu"}).drop_vars(ITEM)
+    ds["mu"].attrs.update(long_name="damping mu = nu / sqrt(2 k m)", units="1")
+    ds = ds.assign_coords(u_bin=xr.Variable(("u_bin",), centres, {
+        "long_name": "landing speed over u_c, bin centre (log grid)", "units": "1"}))
+    ds["u_bin_edges"] = xr.Variable(("u_bin_edge",), _log_edges(centres),
+                                    {"long_name": "edges of the u/u_c bins (geometric midpoints)", "units": "1"})
+    ds.attrs.update(gamma=float(spec["gamma"]), psi0=float(spec["psi0"]), events=int(spec["events"]),
+                    our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]))
+    return ds
+
+
+def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
+    """Median error of 1 - r over (u/u_c, mu) with the band's edges; the error against u/u_c per mu."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    from ..figures.common import WIDTH, save, tex_num
+
+    mu, thr = ds["mu"].values, float(ds.attrs["our_r_threshold"])
+    uc = ds["u_c"].values
+    med = ds["median_err"].values
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.8), constrained_layout=True)
+    finite = med[np.isfinite(med) & (med > 0)]
+    norm = LogNorm(vmin=max(finite.min(), 1e-6), vmax=max(finite.max(), 1.0)) if finite.size else None
+    a1.set_facecolor("0.85")  # grey: no bounce at that speed
+    z = np.where(med > 0, med, np.nan)
+    mesh = a1.pcolormesh(ds["u_bin_edges"].values, _log_edges(mu), z, shading="flat", cmap="viridis", norm=norm)
+    fig.colorbar(mesh, ax=a1, shrink=0.9, label="median error of 1 - r")
+    edges = ds["u_bin_edges"].values
+    # band edges; hollow where the edge is the run's own end (or start) or beyond the grid (drawn at its end)
+    for edge, marker, bound in (("u1", "<", "u_min"), ("u2", ">", "u_max")):
+        x = ds[edge].values / uc
+        open_ = (ds[edge].values == ds[bound].values) | (x < edges[0]) | (x > edges[-1])
+        x = np.clip(x, edges[0], edges[-1])
+        a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4, label="band edges u1, u2" if edge == "u1" else None)
+        a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w",
+                label="edge at the run's end or off the grid" if edge == "u1" and open_.any() else None)
+    a1.axvline(1.0, color="w", lw=0.6, ls="--")
+    a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
+    a1.set_title(f"eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
+    a1.legend(fontsize=6, loc="lower left")
+    centres = ds["u_bin"].values
+    for i, m in enumerate(mu):
+        a2.loglog(centres, med[i], "-", lw=0.9, color=plt.cm.viridis(i / max(mu.size - 1, 1)), label=rf"$\mu={m:.3g}$")
+    a2.axhline(thr, color="k", ls="--", lw=0.8, label="threshold")
+    a2.axvline(1.0, color="0.5", ls=":", lw=0.8)
+    a2.set(xlabel=r"landing speed $u / u_c$", ylabel=r"median $|(1-r)/(1-r_{\rm our})-1|$")
+    a2.legend(fontsize=5, ncol=2)
+    a = ds.attrs
+    fig.suptitle(r"Eq. our-r against the dimer: $\gamma=%s$, drop from $\psi(0)=%s$, $%s$ events per $\mu$; "
+                 "r = ratio of successive landing speeds" % (tex_num(a["gamma"]), tex_num(a["psi0"]), tex_num(a["events"])),
+                 fontsize=8)
+    save(fig, outputs)
+
+
+def estimated_memory_mb(spec: dict) -> int:
+    """One worker: the trajectory and its dataset (~20 float64 per event) and the check's per-bounce arrays."""
+    return math.ceil(40 * 8 * int(spec["events"]) / 1e6) + 300
+
+
+SWEEP = Sweep(NAME, "Eq. our-r over (mu, impact speed): where the stitched restitution law fails (on 1 - r)",
+              size, prepare, compute, VARIABLES, finish, plot, estimated_memory_mb)
