@@ -222,10 +222,15 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig, axs = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
     ax = axs[0]
     exits = ds["alpha_exit"].values
+    seen = set()
     for i, fam in enumerate(str(v) for v in ds["family_label"].values):
-        ax.semilogy(ds["alpha0"].values, exits[i] + 1, ".-", lw=0.5, ms=2, label=fam if i < 4 else None)
+        group = "b = 0" if fam == "b = 0" else ("$b_n = -B n^{-p}$" if "-" in fam.split("n^")[0] else "$b_n = +B n^{-p}$")
+        color = {"b = 0": "k", "$b_n = -B n^{-p}$": "C0", "$b_n = +B n^{-p}$": "C3"}[group]
+        ax.semilogy(ds["alpha0"].values, exits[i] + 1, ".-", lw=0.5, ms=2, color=color,
+                    label=None if group in seen else group)
+        seen.add(group)
     ax.set_xlabel(r"$\alpha_0$")
-    ax.set_ylabel("iterations before leaving (0, 1)")
+    ax.set_ylabel(r"1 + step at which $\alpha_n$ leaves (0, 1)")
     ax.set_title("(a) lem. alpha-map: eq. fg-map from a grid of $\\alpha_0$,\nevery perturbation family $b_n\\to 0$",
                  fontsize=8)
     ax.legend(fontsize=5.5)

@@ -209,7 +209,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         ax.axvline(j * P, color="0.7", lw=0.6, ls=":")
     ax.set_xlabel(r"$t$  [$\sqrt{m/2k}$]")
     ax.set_ylabel("event index")
-    ax.set_title(r"(a) $\mu=0$: sticky cycle, period $t_c+2u=%.4f$ (dotted)" % P, fontsize=8)
+    ax.set_title("(a) $\\mu=0$: the sticky cycle\n(dotted: period $t_c+2u=%.4f$)" % P, fontsize=8)
     ax.legend(fontsize=6)
     ax = axs[1]
     mu = ds["mu"].values
@@ -217,7 +217,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.loglog(mu, ds["sticky_count"].values, "o", color="C0", label="sticky events in the run")
     ax.set_xlabel(r"$\mu$")
     ax.set_ylabel("count")
-    ax.set_title(r"(b) thm. Finite-number-sticky-ev: count and bound, $\gamma=%s$" % tex_num(ds.attrs["gamma"]),
+    ax.set_title("(b) thm. Finite-number-sticky-ev:\ncount and bound, $\\gamma=%s$" % tex_num(ds.attrs["gamma"]),
                  fontsize=8)
     ax.legend(fontsize=6)
     fig.suptitle(f"Check {NAME}: runs with several sticky events and the proof's count bound (dimensionless)",
