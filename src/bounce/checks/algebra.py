@@ -422,7 +422,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         "x''' = -xi''' at xi' = 0; alpha = 4 (x'''/6)/x''^2",
         "the printed equilibrium, limits and alpha; dE/dt <= 0",
         f"dE/dt = {sp.sstr(dE_nl)} <= 0 (the printed rate -mu xi'^2 |xi|^b lacks the factor 2: erratum of check "
-        f"nonlinear); x'' = {sp.sstr(sp.powsimp(sp.simplify(xdd_nl), force=True))}, x''' = {sp.sstr(x3_nl)}, alpha = {sp.sstr(alpha_nl)}", ok_nl)
+        f"nonlinear); x'' = {sp.sstr(sp.powsimp(sp.simplify(xdd_nl), force=True))}, x''' = {sp.sstr(sp.powsimp(x3_nl, force=True))}, alpha = "
+        f"{sp.sstr(sp.powsimp(sp.simplify(alpha_nl), force=True))}", ok_nl)
 
     # introduction: the collapse time of the rigid ball
     u0, r_, n_ = sp.symbols("u_0 r n", positive=True)
