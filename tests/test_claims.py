@@ -65,6 +65,9 @@ OVERRIDES = {
     "sticky-convergence": {"fit_eps_max": 1e-2, "band_mu": [0.0, 0.02]},
     "errata": {"asym_events": 20000, "asym_checkpoints": [1000, 10000], "map_iterations": 100000},
     "nonlinear": {"equilibrium_tolerance": 1e-2},
+    "algebra": {},
+    "sticky-events": {"n_alpha": 30},
+    "appendix": {"giorgio2_iterations": 20000, "giorgio_iterations": 100000},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }

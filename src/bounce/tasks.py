@@ -54,11 +54,12 @@ def _report(args) -> None:
     """Gather every check into results/report/validation.{md,html}."""
     from . import __version__
     from .io import git_info
-    from .report import write
+    from .report import ordered_subjects, write
 
     figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
     meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
-    write(args.inputs, figures, args.out[0], args.out[1], args.spec["subjects"], meta)
+    write(args.inputs, figures, args.out[0], args.out[1], ordered_subjects(args.spec), meta,
+          figures=args.spec.get("figures", []))
 
 
 def _study(args) -> None:

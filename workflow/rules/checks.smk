@@ -38,11 +38,14 @@ rule report:
     input:
         nc=[f"results/checks/{name}.nc" for name in CHECKS],
         png=[f"results/checks/fig-{name}.png" for name in CHECKS],
+        # every other figure, linked with the paper's figure it reproduces (bounce.figures.pipeline_figures)
+        figures=[f["path"] for f in PIPELINE_FIGURES],
     output:
         md="results/report/validation.md",
         html=report("results/report/validation.html", caption="../report/validation.rst", category="Validation report"),
     params:
-        spec=as_json(config["report"]),
+        # the subjects' declared order as a list (as_json sorts keys), and the figures with their captions
+        spec=as_json(dict(config["report"], subject_order=list(config["report"]["subjects"]), figures=PIPELINE_FIGURES)),
     resources:
         mem_mb=1000,
         runtime=10,

@@ -2,7 +2,7 @@
 (figures: bounce.figures.FIGURES; studies: bounce.studies.STUDIES; checks: bounce.checks) read here,
 so that no name is listed twice."""
 
-from bounce.figures import figure_table, sticky_dataset
+from bounce.figures import figure_table, pipeline_figures, sticky_dataset
 from bounce.studies import study_inputs, study_slices
 
 
@@ -30,6 +30,8 @@ STICKY_CONV = [sticky_file(0.0)] + [sticky_file(e) for e in STICKY["eps_converge
 
 # figure name -> (input datasets, spec): the registry bounce.figures.FIGURES, one line per figure
 FIGURES = figure_table(config)
+# every figure besides the claim groups' own, with the paper's figure and caption it reproduces (for the report)
+PIPELINE_FIGURES = pipeline_figures(config)
 
 
 CHECKS = sorted(config.get("checks", {}))

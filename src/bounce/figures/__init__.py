@@ -2,7 +2,10 @@
 Snakefile reads).  A figure function ``draw(datasets, spec, outputs)`` reads netCDF datasets only;
 its registry line says which files it reads and which config slice it takes, as functions of the
 validated config (files named relative to ``results/`` without ``.nc``: ``data/<scene>``,
-``checks/<claim group>``, ``methods/<study>``).
+``checks/<claim group>``, ``methods/<study>``), and which figure of the paper it reproduces, with
+that figure's caption (:class:`Caption`; the report prints it next to the link).  The figures of
+the other stages (methods studies, sweeps) are beyond the paper; their captions are in
+:data:`STAGE_CAPTIONS`, one line per study or sweep, and :func:`pipeline_figures` lists them all.
 """
 
 from __future__ import annotations
@@ -19,12 +22,27 @@ def _one(fn):
 
 
 @dataclass(frozen=True)
+class Caption:
+    """``paper``: the label of the paper's figure reproduced ("" when the figure is beyond the paper);
+    ``text``: the paper's caption (as printed, labels as in the LaTeX source) or what the figure shows."""
+
+    paper: str
+    text: str
+
+
+def _beyond(text: str) -> Caption:
+    return Caption("", text)
+
+
+@dataclass(frozen=True)
 class Figure:
-    """``draw(datasets, spec, outputs)``; ``inputs(config)`` the files it reads; ``spec(config)`` its slice."""
+    """``draw(datasets, spec, outputs)``; ``inputs(config)`` the files it reads; ``spec(config)`` its slice;
+    ``caption`` the paper's figure it reproduces."""
 
     draw: Callable
     inputs: Callable[[dict], list]
     spec: Callable[[dict], dict]
+    caption: Caption
 
 
 def sticky_dataset(eps: float) -> str:
@@ -32,9 +50,9 @@ def sticky_dataset(eps: float) -> str:
     return f"sticky/eps{float(eps):g}"
 
 
-def _scene_figure(draw, key: str, *extra: str) -> Figure:
+def _scene_figure(draw, key: str, *extra: str, caption: Caption) -> Figure:
     """A figure of the scene named by ``config["figures"][key]`` (plus ``extra`` files), configured there."""
-    return Figure(draw, lambda c: [f"data/{c['figures'][key]['scene']}", *extra], lambda c: c["figures"][key])
+    return Figure(draw, lambda c: [f"data/{c['figures'][key]['scene']}", *extra], lambda c: c["figures"][key], caption)
 
 
 def _files(*names: str) -> Callable[[dict], list]:
@@ -44,26 +62,91 @@ def _files(*names: str) -> Callable[[dict], list]:
 _ASYMPTOTIC = _files("data/asymptotic-underdamped", "data/asymptotic-overdamped")
 _NONE = lambda c: {}  # noqa: E731
 
+_POINCARE = ("The dots represent the state of the system immediately after a contact with the floor (that is, "
+             "x = 0) for the simulation of figure (fig:rest-coeff). The equilibrium position of the upper point mass "
+             "is y_eq = 1 - 2 gamma. The thin lines have the sole purpose of making evident the temporal sequence of "
+             "states.")
+
 #: figure name (the paper's figure label) -> Figure: the registry, one line per figure
 FIGURES = {
-    "rigid-fall": _scene_figure(_one(trajectories.rigid_fall), "rigid-fall"),
+    "rigid-fall": _scene_figure(_one(trajectories.rigid_fall), "rigid-fall", caption=Caption(
+        "fig:rigid-fall", "Numerical simulation with initial conditions xi(0) = xi'(0) = psi'(0) = 0, psi(0) = 6, and "
+        "gamma = mu = 0.01. The upper curve is y(t), the lower curve is x(t). The solid dots show the instants when "
+        "there is an impact. The inset magnifies the region within the dashed rectangle.")),
     # r_n while the impacts pair up (check restitution) and the float64 horizon (study horizon)
-    "rest-coeff": _scene_figure(contacts.rest_coeff, "rest-coeff", "checks/restitution", "methods/horizon"),
-    "very_rigid_poincare": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare"),
-    "very_rigid_poincare_magni": _scene_figure(_one(contacts.contact_portrait_magni), "very_rigid_poincare"),
-    "very_rigid_poincare_overdamped": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare_overdamped"),
+    "rest-coeff": _scene_figure(contacts.rest_coeff, "rest-coeff", "checks/restitution", "methods/horizon",
+                                caption=Caption(
+        "fig:rest-coeff", "Restitution coefficient computed using the definition (eq:Falcon-rest-coeff) from a "
+        "simulation with gamma = 1e-5, mu = 1e-2, and initial conditions xi(0) = xi'(0) = psi'(0) = 0, psi(0) = 0.25.")),
+    "very_rigid_poincare": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare",
+                                         caption=Caption("fig:very_rigid_poincare", _POINCARE)),
+    "very_rigid_poincare_magni": _scene_figure(_one(contacts.contact_portrait_magni), "very_rigid_poincare",
+                                               caption=Caption("fig:very_rigid_poincare_magni",
+                                                               "Magnification of the figure (fig:very_rigid_poincare), "
+                                                               "close to (0,0,0).")),
+    "very_rigid_poincare_overdamped": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare_overdamped",
+                                                    caption=Caption("fig:very_rigid_poincare_overdamped",
+                                                                    "Same as figure (fig:very_rigid_poincare), but with "
+                                                                    "mu = 2.")),
     "very_rigid_poincare_overdamped_magni": _scene_figure(_one(contacts.contact_approach_magni),
-                                                          "very_rigid_poincare_overdamped"),
+                                                          "very_rigid_poincare_overdamped", caption=Caption(
+        "fig:very_rigid_poincare_overdamped_magni",
+        "Magnification of figure (fig:very_rigid_poincare_overdamped), close to (0,0,0).")),
     "sticky-traj": Figure(trajectories.sticky_traj,
                           lambda c: [f"data/{sticky_dataset(e)}" for e in c["sticky"]["eps_traj"]],
-                          lambda c: {"t_end": c["sticky"]["t_max"]}),
+                          lambda c: {"t_end": c["sticky"]["t_max"]}, Caption(
+        "fig:sticky-traj", "Simulations using the initial conditions (eq:sticky-ic) for three different values of "
+        "epsilon. Solid dots mark the times of impact. In the panel epsilon = 0, in the interval between the first two "
+        "solid dots, the lower point mass is in contact with the floor.")),
     # the report's fit range and slopes come from check sticky-convergence
     "sticky-convergence": Figure(sticky.sticky_convergence, _files("data/sticky-convergence", "checks/sticky-convergence"),
-                                 _NONE),
-    "sticky-inference": Figure(_one(sticky.sticky_inference), _files("data/sticky-inference"), _NONE),
-    "energy-decay": Figure(asymptotics.energy_decay, _ASYMPTOTIC, _NONE),
-    "asymptotic-laws": Figure(asymptotics.asymptotic_laws, _ASYMPTOTIC, _NONE),
+                                 _NONE, Caption(
+        "fig:sticky-convergence", "Number of impacts performed by the lower point mass in the interval (0, t_c) and "
+        "root mean squared difference (eq:L2-norm) as function of epsilon.")),
+    "sticky-inference": Figure(_one(sticky.sticky_inference), _files("data/sticky-inference"), _NONE, _beyond(
+        "The paper does not give gamma, mu for figs. sticky-traj and sticky-convergence: t_c(gamma, mu) of the "
+        "eps = 0 sticky phase and the band of t_c = 5.23..., through the values the scenes use.")),
+    "energy-decay": Figure(asymptotics.energy_decay, _ASYMPTOTIC, _NONE, _beyond(
+        "E - E_m against time (exponential at the rate of check static-equilibrium) and against the impact index, "
+        "under- and over-damped (Theorem static-equilibrium).")),
+    "asymptotic-laws": Figure(asymptotics.asymptotic_laws, _ASYMPTOTIC, _NONE, _beyond(
+        "n tau_n mu/3 and n Xdot_n mu/(3 gamma) to 1e6 impacts: the laws of Theorem main_thm approached.")),
 }
+
+#: captions of the figures of the other stages ("methods/<study>": bounce.studies.STUDIES, "sweeps/<name>":
+#: config sweeps), all beyond the paper; a test keeps the keys equal to the registries
+STAGE_CAPTIONS = {
+    "methods/horizon": _beyond("Predictability horizon of the float64 solver against mpmath: the impact index up to "
+                               "which impact times agree, per damping regime."),
+    "methods/contact-switch": _beyond("The contact-switch approximation (a contact rule with threshold delta) against "
+                                      "the exact dimer, as delta -> 0."),
+    "methods/reduced-vs-dimer": _beyond("Rigid-ball models (constant r, eq. onefifth-rest-coeff, eq. our-r, time of "
+                                        "contact) against the dimer on the paper's drops."),
+    "methods/least-model": _beyond("The cheapest model meeting an explicit tolerance on each scene's quantity of "
+                                   "interest."),
+    "methods/work-precision": _beyond("Work-precision of general-purpose methods (solve_ivp, penalty DEM, Moreau-Jean) "
+                                      "on the fig. rigid-fall drop."),
+    "methods/stability-map": _beyond("Where each general-purpose method stops on the fig. rigid-fall drop, and why."),
+    "sweeps/asymptotic-atlas": _beyond("Fitted limits of n tau_n mu/3 and n Xdot_n mu/(3 gamma) (Theorem main_thm) "
+                                       "over a (mu, gamma) grid, with errors and transient lengths."),
+    "sweeps/contact-monte-carlo": _beyond("Random initial states: impact speeds against the classifier's window; "
+                                          "grazings and sticky starts (Theorem contact-non-generic)."),
+}
+
+
+def pipeline_figures(config: dict) -> list[dict]:
+    """Every figure the pipeline makes besides the claim groups' own: path of its PNG (from the working directory),
+    name, the paper's figure label it reproduces ("" = beyond the paper) and caption; in registry order."""
+    from ..studies import STUDIES
+
+    out = [dict(path=f"results/figures/fig-{name}.png", name=name, paper=fig.caption.paper, caption=fig.caption.text)
+           for name, fig in FIGURES.items()]
+    stages = [f"methods/{name}" for name in STUDIES] + [f"sweeps/{name}" for name in config.get("sweeps", {})]
+    for key in stages:
+        stage, name = key.split("/")
+        cap = STAGE_CAPTIONS[key]
+        out.append(dict(path=f"results/{stage}/fig-{name}.png", name=name, paper=cap.paper, caption=cap.text))
+    return out
 
 
 def figure_table(config: dict) -> dict:

@@ -34,7 +34,7 @@ def energy_decay(datasets, spec, outputs) -> None:
         late = n >= n[-1] / 100
         t0, e0 = t[late][0], e[late][0]
         ax.semilogy(t[late], e0 * np.exp(-kappa * (t[late] - t0)), "--", color="C3", lw=1.3,
-                    label=r"$\propto e^{-\kappa t}$, $\kappa=%.4g$" % kappa)
+                    label=r"$\propto e^{-\kappa t}$, $\kappa=%s$" % tex_num(kappa, 4))
         ax.set_xlabel(r"$t - t_1$  [$\sqrt{m/2k}$]")
         ax.set_title("(%s) %s" % ("abc"[i], _regime(ds)), fontsize=8)
         ax.set_ylim(top=30 * e.max())  # headroom for the legend

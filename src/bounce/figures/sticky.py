@@ -34,7 +34,7 @@ def sticky_convergence(datasets, spec, outputs) -> None:
         if not np.isclose(slope, float(check.attrs[reported]), rtol=1e-9, atol=0.0):
             raise ValueError(f"{var}: slope {slope} differs from the report's {check.attrs[reported]}")
         ax.loglog(eps[ok], np.exp(icpt) * eps[ok] ** slope, color="C3", lw=0.8,
-                  label=r"fit: slope $%.3f \pm %.1g$" % (slope, err))
+                  label=r"fit: slope $%.3f \pm %s$" % (slope, tex_num(err, 1)))
         if var == "rms":  # the paper: the RMS difference falls to zero faster than linearly
             k = int(np.argmin(np.where(ok, eps, np.inf)))
             ax.loglog(eps[ok], y[k] * eps[ok] / eps[k], color="0.3", lw=0.8, ls=":", label="slope 1 (linear)")

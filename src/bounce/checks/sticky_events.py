@@ -1,0 +1,229 @@
+"""Theorem Finite-number-sticky-ev exercised: runs with several sticky events, and the count bound of its proof.
+
+The proof bounds the count by energy: every finite sticky event dissipates at least D > 0 (Lemma
+td-ts-bound and the expansion of its proof), and no sticky event starts below E_min (Lemma
+Min-sticky-energy), so a run whose first sticky onset has energy E(s_1) has at most
+
+    N <= 1 + (E(s_1) - E_min) / D,
+
+D the least energy (mu/2) int_{t_s}^{t_d} ydot^2 (eq. energy-dissipation with xi' = ydot/2 in contact)
+that a finite sticky phase with onset energy in [E_min, E(s_1)] dissipates.  D is computed from the
+sticky phase's closed form (eq. y-eq-sticky, :func:`bounce.theory.sticky_fundamental`, the detach time
+:func:`bounce.theory.t_c`) over a grid of onsets alpha_s in (eps*, alpha_max]: a grid minimum is at least the
+infimum, so the bound computed is never looser than the proof's.
+
+Runs with several sticky events.  For mu > 0 a second sticky onset after a detach is a codimension-2
+event in the parameters (gamma scales out: three conditions x = x' = x'' = 0 at the landing on the two
+parameters (alpha_s, mu)); Newton from a scan found none, and the mu = 0 solution below is isolated
+(its Jacobian is regular), so the constructed orbit is the conservative one:
+
+* mu = 0 (outside the theorem, which assumes dissipation): every sticky phase is symmetric (s = R(d),
+  R the time reversal ydot -> -ydot) and a flight from the detach state d with psi' = xi' = 0 at its
+  midpoint t_h lands at R(d), a sticky onset.  With x = x' = 0, eta = 2 gamma, xi' = a at d: psi' = a - gamma t,
+  xi' = a cos t - gamma sin t (xi = gamma cos t + a sin t), so t_h = a/gamma with tan(u) = u, u = a/gamma.
+  The orbit onset -> sticky -> detach -> flight of 2u -> onset is periodic: infinitely many sticky events,
+  which the theorem's bound allows only because D = 0 at mu = 0.  The exact (mpmath) flight is checked to
+  land on a sticky onset; the simulator, started at the onset, is run for ``events`` events (<= 20: a
+  short probe), and follows the unstable orbit for as many sticky events as rounding allows.
+* mu > 0 in ``mu``: the same onset speed Ydot_s = -2 u gamma, each run's sticky count against its bound.
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import xarray as xr
+from mpmath import findroot, mp, mpf, tan
+from scipy.integrate import simpson
+
+from .. import reference, theory
+from ..events import DETACH, STICKY_ONSET, STICKY_START, contact_window
+from ..model import Parameters, State
+from ..simulate import simulate
+from .base import BEYOND, PAPER, Check, Verdict, judge, recorded, variable
+
+NAME = "sticky-events"
+
+
+def symmetric_flight_root() -> float:
+    """u > 0, the first positive root of tan u = u (the flight's half time in units of 1 at mu = 0), to 1e-30."""
+    with mp.workdps(40):
+        return findroot(lambda u: tan(u) - u, mpf("4.4934"))
+
+
+def sticky_dissipation(gamma: float, mu: float, ydot_s: float, samples: int) -> tuple[float, float]:
+    """(duration t_d - t_s, energy dissipated (mu/2) int ydot^2) of the sticky phase from the onset with Ydot_s.
+
+    w = y - y_eq obeys w'' + mu w' + w/2 = 0 (eq. y-eq-sticky) from w = 4 gamma - 2 mu Ydot_s, w' = Ydot_s:
+    ydot = w' = -w0 S/2 + w0' (C - mu S) (C' = -S/2, S' = C - mu S); Simpson on ``samples`` points (error
+    O(samples^-4), below 1e-10 relative at 2001).  (nan, nan) if the phase never ends.
+    """
+    t_d = theory.t_c(gamma, mu, ydot_s)
+    if not math.isfinite(t_d):
+        return math.nan, math.nan
+    t = np.linspace(0.0, t_d, samples)
+    C, S = theory.sticky_fundamental(mu, t)
+    w0, w0d = 4 * gamma - 2 * mu * ydot_s, ydot_s
+    ydot = -w0 * S / 2 + w0d * (C - mu * S)
+    return t_d, 0.5 * mu * simpson(ydot**2, x=t)
+
+
+def least_dissipation(gamma: float, mu: float, excess_1: float, n_alpha: int, samples: int):
+    """D: the least energy a finite sticky phase dissipates among onsets with E - E_m <= excess_1, from a grid
+    of alpha_s = 4 gamma mu - Ydot_s in (eps*, alpha_max] (geometric near eps*, where the phases lengthen).
+
+    On the sticky line E - E_m = Ydot^2/4 + (4 gamma - 2 mu Ydot)^2/8 (eq. sticky-energy): a parabola in Ydot,
+    so the admissible Ydot form an interval.  Returns (D, alpha at D, alpha grid, dissipation on it).
+    """
+    a2, a1, a0 = 0.25 + 0.5 * mu * mu, -2 * gamma * mu, 2 * gamma * gamma - excess_1
+    disc = a1 * a1 - 4 * a2 * a0
+    if disc <= 0:
+        return math.nan, math.nan, np.array([]), np.array([])
+    y_lo = (-a1 - math.sqrt(disc)) / (2 * a2)
+    y_hi = (-a1 + math.sqrt(disc)) / (2 * a2)
+    eps_s = theory.eps_star(gamma, mu)[0]
+    lo = max(eps_s, 4 * gamma * mu - y_hi, 0.0)
+    hi = 4 * gamma * mu - y_lo
+    alphas = lo + (hi - lo) * np.geomspace(1e-6, 1.0, n_alpha)
+    diss = np.array([sticky_dissipation(gamma, mu, 4 * gamma * mu - al, samples)[1] for al in alphas])
+    k = int(np.nanargmin(diss))
+    return float(diss[k]), float(alphas[k]), alphas, diss
+
+
+def measure(spec: dict, inputs=()) -> SimpleNamespace:
+    rows: dict = {}
+    gamma = float(spec["gamma"])
+    n_events = int(spec["events"])
+    u = symmetric_flight_root()
+    a = float(u) * gamma  # xi' at the detach, = -xi' at the onset
+    ydot_s = -2 * a
+
+    # ---------------------------------------------------------------- mu = 0: the exact periodic sticky orbit
+    with mp.workdps(40):
+        land = reference.free_flight(mpf(gamma), 0, 0, 0, u * mpf(gamma), 2 * mpf(gamma), 2 * u)
+        xdd_land = land.eta - 2 * mpf(gamma)  # x'' = eta - 2 gamma + 2 mu xi' at x = 0
+        mid = [reference.free_flight(mpf(gamma), 0, 0, 0, u * mpf(gamma), 2 * mpf(gamma), 2 * u * k / 16).x
+               for k in range(1, 16)]
+        exact = (float(abs(land.x) / gamma), float(abs(land.u) / gamma), float(abs(xdd_land) / gamma),
+                 float(min(mid) / gamma), float((land.a + u * mpf(gamma)) / gamma))
+    p0 = Parameters(gamma, 0.0)
+    tr0 = simulate(p0, State.sticky_ic(p0, eps=0.0, ydot0=ydot_s), max_events=n_events)
+    starts0 = np.flatnonzero(tr0.kind == STICKY_START)
+    t_c0 = theory.t_c(gamma, 0.0, ydot_s)
+    period = t_c0 + 2 * float(u)
+    returns = np.diff(tr0.t[starts0]) - period if starts0.size > 1 else np.array([math.nan])
+    e_drift = float(np.max(np.abs(tr0.energy_excess - tr0.energy_excess[0])) / tr0.energy_excess[0])
+    # the classifier's windows at the landing (bounce.events): its time is hidden within delta3, and the onset is
+    # put on the sticky line, moving x'' by up to (STICKY_ONSET x'''^2 xn)^(1/3), i.e. z by twice that and E by z/4 times it
+    jerk = float(u) * gamma  # |x'''| = |Ydot_s - 4 gamma mu|/2 at the onset
+    xn, _, _, delta3 = contact_window(max(2 * a * float(u), 2 * gamma * float(u) ** 2), 0.0, jerk)
+    e_window = 4 * gamma * (STICKY_ONSET * jerk**2 * xn) ** (1 / 3) / 2 / float(tr0.energy_excess[0])
+    ok0 = (exact[0] < 1e-30 and exact[1] < 1e-30 and exact[2] < 1e-30 and exact[3] > 0 and abs(exact[4]) < 1e-30
+           and starts0.size >= 2 and bool(np.all(np.abs(returns) <= 2 * delta3)) and e_drift <= e_window)
+    rows["conservative-sticky-cycle"] = Verdict(
+        claim="Without dissipation (mu = 0, outside the theorem) a solution can have infinitely many sticky events: "
+              "the periodic orbit onset -> sticky phase -> detach -> flight of 2u (tan u = u) -> onset",
+        paper_ref="thm:Finite-number-sticky-ev (its hypothesis mu > 0); lem:Min-sticky-energy",
+        computed=f"u = {float(u):.15f}; the flight from the detach (x = x' = 0, xi' = u gamma, eta = 2 gamma), gamma = "
+                 f"{gamma}, in mpmath (40 digits) at t = 2u and at 15 interior points; the simulator from the onset "
+                 f"Ydot_s = -2 u gamma for {n_events} events",
+        expected="landing with x = x' = x'' = 0 and xi' = -u gamma (the onset again), x > 0 in flight; the simulator's "
+                 f"sticky onsets every t_c + 2u = {period:.10f}, energy constant",
+        measured=f"landing |x|, |x'|, |x''| = {exact[0]:.1g}, {exact[1]:.1g}, {exact[2]:.1g} gamma, least interior "
+                 f"x = {exact[3]:.4g} gamma, xi' + u gamma = {exact[4]:.1g}; simulator: {starts0.size} sticky events "
+                 f"in {len(tr0)} events ({', '.join(tr0.kind_names[:6])}, ...), returns off the period by "
+                 f"{np.nanmax(np.abs(returns)):.2g}, energy drift {e_drift:.2g} (relative); the orbit is unstable, "
+                 "so rounding ends the cycle after the events shown",
+        tolerance=f"1e-30 gamma (mpmath at 40 digits); returns within 2 delta3 = {2 * delta3:.2g} and energy within "
+                  f"{e_window:.2g} relative: the classifier's time and x'' windows at a sticky landing (bounce.events)",
+        verdict=judge(ok0))
+
+    # ---------------------------------------------------------------- mu > 0: the count against its bound
+    counts, bounds, D_all, drops_min = [], [], [], []
+    per_mu = {}
+    for mu in (float(m) for m in spec["mu"]):
+        p = Parameters(gamma, mu)
+        tr = simulate(p, State.sticky_ic(p, eps=0.0, ydot0=ydot_s), max_events=n_events)
+        starts = np.flatnonzero(tr.kind == STICKY_START)
+        detaches = np.flatnonzero(tr.kind == DETACH)
+        excess_1 = float(tr.energy_excess[starts[0]])
+        emin_excess = theory.min_sticky_energy(gamma, mu) - theory.E_min(gamma)
+        D, alpha_D, alphas, diss = least_dissipation(gamma, mu, excess_1, int(spec["n_alpha"]), int(spec["samples"]))
+        bound = 1 + (excess_1 - emin_excess) / D
+        drops = [float(tr.energy_excess[s] - tr.energy_excess[d]) for s in starts for d in detaches[detaches > s][:1]]
+        onset_ok = bool(np.all(tr.energy_excess[starts] >= emin_excess * (1 - 1e-12)))
+        ok = starts.size <= bound and all(dr >= D * (1 - 1e-6) for dr in drops) and onset_ok
+        counts.append(starts.size)
+        bounds.append(bound)
+        D_all.append(D)
+        drops_min.append(min(drops) if drops else math.nan)
+        per_mu[f"mu={mu:g}"] = Verdict(
+            claim="Any solution has at most finitely many sticky events: N <= 1 + (E(s_1) - E_min)/D, D the least "
+                  "energy a finite sticky event dissipates",
+            paper_ref="thm:Finite-number-sticky-ev (its proof), lem:Min-sticky-energy, lem:td-ts-bound",
+            computed=f"the onset Ydot_s = -2 u gamma (gamma = {gamma}, mu = {mu:g}) simulated for {n_events} events; D "
+                     f"from the closed-form sticky phase over {alphas.size} onsets alpha_s in (eps*, alpha_max] with "
+                     "E(t_s) <= E(s_1) (eq. energy-dissipation: (mu/2) int ydot^2)",
+            expected="sticky events <= bound; each finite sticky event dissipates >= D; onsets at E >= E_min",
+            measured=f"{starts.size} sticky events ({', '.join(tr.kind_names[:4])}, ...; stop {tr.stop_reason}); "
+                     f"E(s_1) - E_m = {excess_1 / gamma**2:.6g} gamma^2, E_min - E_m = {emin_excess / gamma**2:.6g} "
+                     f"gamma^2, D = {D / gamma**2:.4g} gamma^2 (at alpha_s = {alpha_D / gamma:.4g} gamma; D/mu = "
+                     f"{D / mu / gamma**2:.4g} gamma^2: the bound grows like 1/mu), bound {bound:.4g}; dissipated per "
+                     f"sticky event {[round(d / gamma**2, 6) for d in drops]} gamma^2",
+            tolerance="exact count; dissipation 1e-6 relative (Simpson on the closed form vs the simulator's energy "
+                      "records); onset energies 1e-12 relative",
+            verdict=judge(ok))
+    rows["sticky-count-bound"] = per_mu
+    mus = np.array([float(m) for m in spec["mu"]])
+    data = xr.Dataset({
+        "mu": variable("run", mus, "damping mu of the run"),
+        "sticky_count": variable("run", np.array(counts), "sticky events in the run"),
+        "count_bound": variable("run", np.array(bounds), "1 + (E(s_1) - E_min)/D (proof of thm:Finite-number-sticky-ev)"),
+        "least_dissipation": variable("run", np.array(D_all) / gamma**2, "D / gamma^2"),
+        "conservative_sticky_times": variable("cycle_onset", tr0.t[starts0], "sticky onsets of the mu = 0 run"),
+        "conservative_times": variable("cycle_event", tr0.t, "events of the mu = 0 run"),
+        "conservative_kind": variable("cycle_event", tr0.kind.astype(np.int8), "event kind (0 impact, 2 sticky start, "
+                                      "3 detach)"),
+    }, attrs={"check": NAME, "gamma": gamma, "period": period, "u": float(u)})
+    return SimpleNamespace(rows=rows, data=data)
+
+
+CLAIMS: list = []
+recorded(CLAIMS, "conservative-sticky-cycle", BEYOND, "thm:Finite-number-sticky-ev")
+recorded(CLAIMS, "sticky-count-bound", PAPER, "thm:Finite-number-sticky-ev")
+
+
+def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
+    from ..figures.common import WIDTH, plt, save, tex_num
+
+    fig, axs = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
+    ax = axs[0]
+    t, kind = ds["conservative_times"].values, ds["conservative_kind"].values
+    for k, (lab, c, mk) in {0: ("impact", "C0", "."), 2: ("sticky start", "C3", "v"), 3: ("detach", "C2", "^")}.items():
+        sel = kind == k
+        ax.plot(t[sel], np.arange(t.size)[sel] + 1, mk, color=c, ms=5, label=lab)
+    P = ds.attrs["period"]
+    for j in range(int(t.max() // P) + 1):
+        ax.axvline(j * P, color="0.7", lw=0.6, ls=":")
+    ax.set_xlabel(r"$t$  [$\sqrt{m/2k}$]")
+    ax.set_ylabel("event index")
+    ax.set_title("(a) $\\mu=0$: the sticky cycle\n(dotted: period $t_c+2u=%.4f$)" % P, fontsize=8)
+    ax.legend(fontsize=6)
+    ax = axs[1]
+    mu = ds["mu"].values
+    ax.loglog(mu, ds["count_bound"].values, "s-", color="C1", label="bound $1+(E(s_1)-E_{min})/D$")
+    ax.loglog(mu, ds["sticky_count"].values, "o", color="C0", label="sticky events in the run")
+    ax.set_xlabel(r"$\mu$")
+    ax.set_ylabel("count")
+    ax.set_title("(b) thm. Finite-number-sticky-ev:\ncount and bound, $\\gamma=%s$" % tex_num(ds.attrs["gamma"]),
+                 fontsize=8)
+    ax.legend(fontsize=6)
+    fig.suptitle(f"Check {NAME}: runs with several sticky events and the proof's count bound (dimensionless)",
+                 fontsize=9)
+    fig.tight_layout()
+    save(fig, outputs)
+
+
+CHECK = Check(NAME, measure, tuple(CLAIMS), plot, title="Sticky events counted: several in one run, and the bound")

@@ -1,0 +1,46 @@
+"""Claim group sticky-events: its rows can fail, and its bound's D is what the simulator dissipates."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mpmath import mpf
+
+from bounce import Parameters, State, simulate, theory
+from bounce.checks import sticky_events as se
+from bounce.checks.base import NOT_REPRODUCED, REPRODUCED
+from bounce.claims_cli import group_spec
+from bounce.events import DETACH, STICKY_START
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _spec(**changes):
+    return group_spec("sticky-events", {"mu": [0.1], "n_alpha": 12, **changes}, ROOT)
+
+
+def test_wrong_flight_time_breaks_the_cycle(monkeypatch):
+    """With u off the root of tan u = u the exact flight does not land on a sticky onset: the row flips."""
+    assert se.measure(_spec()).rows["conservative-sticky-cycle"].verdict == REPRODUCED
+    monkeypatch.setattr(se, "symmetric_flight_root", lambda: mpf("4.5"))
+    assert se.measure(_spec()).rows["conservative-sticky-cycle"].verdict == NOT_REPRODUCED
+
+
+def test_least_dissipation_matches_the_simulator():
+    """D (closed form, Simpson) equals the energy the simulator loses in the sticky phase from the minimising onset;
+    a D too large by 1 % would exceed it (the per-event check of sticky-count-bound would fail)."""
+    g, mu = 0.01, 0.1
+    D, alpha, _, _ = se.least_dissipation(g, mu, 24.0 * g * g, 12, 2001)
+    p = Parameters(g, mu)
+    tr = simulate(p, State.sticky_ic(p, eps=0.0, ydot0=4 * g * mu - alpha), max_events=3)
+    s, d = list(tr.kind).index(STICKY_START), list(tr.kind).index(DETACH)
+    drop = tr.energy_excess[s] - tr.energy_excess[d]
+    assert abs(drop - D) <= 1e-6 * D
+    assert drop < 1.01 * D
+
+
+def test_bound_grows_like_one_over_mu():
+    g = 0.01
+    d = [se.least_dissipation(g, mu, 24.0 * g * g, 12, 2001)[0] / mu for mu in (1e-3, 1e-2)]
+    assert 0.5 < d[0] / d[1] < 2.0  # D ~ mu: the count bound ~ 1/mu, infinite at mu = 0 (the conservative cycle)
+    assert theory.min_sticky_energy(g, 0.0) > theory.E_min(g)
