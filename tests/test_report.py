@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 from bounce.checks.base import PAPER, REPRODUCED, Verdict, verdict_dataset
-from bounce.figures import FIGURES, STAGE_CAPTIONS, pipeline_figures
+from bounce.figures import FIGURES, pipeline_figures
 from bounce.report import ReportError, ordered_subjects, write
 from bounce.studies import STUDIES
 
@@ -18,7 +18,7 @@ CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
 
 
 def test_captions_cover_every_stage_figure_and_name_paper_figures():
-    assert set(STAGE_CAPTIONS) == {f"methods/{s}" for s in STUDIES} | {f"sweeps/{s}" for s in CONFIG["sweeps"]}
+    assert all(study.caption.strip() for study in STUDIES.values())
     tex = Path("/work/shared/paper/stopping-time-bouncing-ball.tex")
     for name, fig in FIGURES.items():
         assert fig.caption.text.strip()

@@ -21,6 +21,8 @@ class Study:
     build: str
     plot: str
     config: Callable[[dict], dict]
+    #: what its figure fig-<study> shows (the report's caption; every study is beyond the paper)
+    caption: str
     #: the scenes whose datasets (results/data/<scene>.nc, the scene rule's) the study reads
     scenes: Callable[[dict], list] = lambda config: []
     #: the study measures CPU time (budgets, the cheapest model): its dataset and figure are timing files,
@@ -57,21 +59,36 @@ def study_slice(methods: dict, kind: str, block: str | None = None) -> dict:
 
 #: study name -> Study (one line per study)
 STUDIES = {
-    "horizon": Study("bounce.methods.horizon", "horizon_dataset", "plot_horizon", lambda c: c["reduced"]["horizon"]),
+    "horizon": Study("bounce.methods.horizon", "horizon_dataset", "plot_horizon", lambda c: c["reduced"]["horizon"],
+                     caption=("Predictability horizon of the float64 solver against mpmath: the impact index"
+                              " up to which impact times agree, per damping regime.")),
     "contact-switch": Study("bounce.methods.contact_switch", "switch_study", "plot_switch_study",
-                            lambda c: c["reduced"]["switch"]),
+                            lambda c: c["reduced"]["switch"],
+                            caption=("The contact-switch approximation (a contact rule with threshold delta)"
+                                     " against the exact dimer, as delta -> 0.")),
     "reduced-vs-dimer": Study("bounce.methods.reduced_compare", "reduced_vs_dimer", "plot_reduced_vs_dimer",
-                              lambda c: c["reduced"]["vs_dimer"]),
+                              lambda c: c["reduced"]["vs_dimer"],
+                              caption=("Rigid-ball models (constant r, eq. onefifth-rest-coeff, eq. our-r, "
+                                       "time of contact) against the dimer on the paper's drops.")),
     "least-model": Study("bounce.methods.reduced_compare", "least_model", "plot_least_model", _least_model_slice,
-                         scenes=_least_model_scenes, timed=True),
+                         scenes=_least_model_scenes, timed=True,
+                         caption=("The cheapest model meeting an explicit tolerance on each scene's quantity"
+                                  " of interest.")),
     "work-precision": Study("bounce.methods.compare", "work_precision", "plot_work_precision",
-                            lambda c: study_slice(c["methods"], "work_precision"), timed=True),
+                            lambda c: study_slice(c["methods"], "work_precision"), timed=True,
+                            caption=("Work-precision of general-purpose methods (solve_ivp, penalty DEM, "
+                                     "Moreau-Jean, heyoka) on the fig. rigid-fall drop.")),
     "stability-map": Study("bounce.methods.compare", "stability_map", "plot_stability_map",
-                           lambda c: study_slice(c["methods"], "stability_map"), timed=True),
+                           lambda c: study_slice(c["methods"], "stability_map"), timed=True,
+                           caption=("Where each general-purpose method stops on the fig. rigid-fall drop, "
+                                    "and why.")),
     "work-precision-hertz": Study("bounce.methods.compare", "work_precision", "plot_work_precision",
-                                  lambda c: study_slice(c["methods"], "work_precision", "work_precision_hertz"), timed=True),
+                                  lambda c: study_slice(c["methods"], "work_precision", "work_precision_hertz"), timed=True,
+                                  caption=("Work-precision of heyoka against bounce's power-law solver on "
+                                           "the Hertz drop (a = b = 1/2).")),
     "stability-map-hertz": Study("bounce.methods.compare", "stability_map", "plot_stability_map",
-                                 lambda c: study_slice(c["methods"], "stability_map", "stability_map_hertz"), timed=True),
+                                 lambda c: study_slice(c["methods"], "stability_map", "stability_map_hertz"), timed=True,
+                                 caption="Where heyoka stops on the Hertz drop (a = b = 1/2), and why."),
 }
 
 

@@ -4,8 +4,9 @@ its registry line says which files it reads and which config slice it takes, as 
 validated config (files named relative to ``results/`` without ``.nc``: ``data/<scene>``,
 ``checks/<claim group>``, ``methods/<study>``), and which figure of the paper it reproduces, with
 that figure's caption (:class:`Caption`; the report prints it next to the link).  The figures of
-the other stages (methods studies, sweeps) are beyond the paper; their captions are in
-:data:`STAGE_CAPTIONS`, one line per study or sweep, and :func:`pipeline_figures` lists them all.
+the other stages are beyond the paper; their captions are the study's ``caption``
+(:data:`bounce.studies.STUDIES`) and the sweep's ``title`` (:mod:`bounce.sweeps`), and :func:`pipeline_figures`
+lists them all.
 """
 
 from __future__ import annotations
@@ -113,39 +114,19 @@ FIGURES = {
         "n tau_n mu/3 and n Xdot_n mu/(3 gamma) to 1e6 impacts: the laws of Theorem main_thm approached.")),
 }
 
-#: captions of the figures of the other stages ("methods/<study>": bounce.studies.STUDIES, "sweeps/<name>":
-#: config sweeps), all beyond the paper; a test keeps the keys equal to the registries
-STAGE_CAPTIONS = {
-    "methods/horizon": _beyond("Predictability horizon of the float64 solver against mpmath: the impact index up to "
-                               "which impact times agree, per damping regime."),
-    "methods/contact-switch": _beyond("The contact-switch approximation (a contact rule with threshold delta) against "
-                                      "the exact dimer, as delta -> 0."),
-    "methods/reduced-vs-dimer": _beyond("Rigid-ball models (constant r, eq. onefifth-rest-coeff, eq. our-r, time of "
-                                        "contact) against the dimer on the paper's drops."),
-    "methods/least-model": _beyond("The cheapest model meeting an explicit tolerance on each scene's quantity of "
-                                   "interest."),
-    "methods/work-precision": _beyond("Work-precision of general-purpose methods (solve_ivp, penalty DEM, Moreau-Jean) "
-                                      "on the fig. rigid-fall drop."),
-    "methods/stability-map": _beyond("Where each general-purpose method stops on the fig. rigid-fall drop, and why."),
-    "sweeps/asymptotic-atlas": _beyond("Fitted limits of n tau_n mu/3 and n Xdot_n mu/(3 gamma) (Theorem main_thm) "
-                                       "over a (mu, gamma) grid, with errors and transient lengths."),
-    "sweeps/contact-monte-carlo": _beyond("Random initial states: impact speeds against the classifier's window; "
-                                          "grazings and sticky starts (Theorem contact-non-generic)."),
-}
-
-
 def pipeline_figures(config: dict) -> list[dict]:
     """Every figure the pipeline makes besides the claim groups' own: path of its PNG (from the working directory),
     name, the paper's figure label it reproduces ("" = beyond the paper) and caption; in registry order."""
     from ..studies import STUDIES
+    from ..sweeps import registry
 
     out = [dict(path=f"results/figures/fig-{name}.png", name=name, paper=fig.caption.paper, caption=fig.caption.text)
            for name, fig in FIGURES.items()]
-    stages = [f"methods/{name}" for name in STUDIES] + [f"sweeps/{name}" for name in config.get("sweeps", {})]
-    for key in stages:
-        stage, name = key.split("/")
-        cap = STAGE_CAPTIONS[key]
-        out.append(dict(path=f"results/{stage}/fig-{name}.png", name=name, paper=cap.paper, caption=cap.text))
+    out += [dict(path=f"results/methods/fig-{name}.png", name=name, paper="", caption=study.caption)
+            for name, study in STUDIES.items()]
+    sweeps = registry()
+    out += [dict(path=f"results/sweeps/fig-{name}.png", name=name, paper="", caption=sweeps[name].title)
+            for name in config.get("sweeps", {})]
     return out
 
 
