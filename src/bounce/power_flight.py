@@ -90,6 +90,7 @@ from .power_series import (
     curvature,
     displacement,
     powers_at,
+    restoring_excess,
     tail_bounds,
     taylor_coefficients,
 )
@@ -150,6 +151,62 @@ def _curvature_bound_near(w0, v, p0, q0, law):
 
 
 @njit(cache=True)
+def floor_force(v, eta, law):
+    """(F, F', noise of F, noise of F') for a state at rest on the floor (x = x' = 0).
+
+    F = f(xi) + 2 mu xi' |xi|^b - gamma is the force of spring and gravity on the lower mass
+    (eq. ``force-on-the-floor`` for a = b = 0, rho = 1), i.e. x'' of the free motion there,
+    and F' = x''' = d/dt (f(xi) + 2 mu xi' |xi|^b), the same for the free and the sticky
+    motion at F = 0 (both have xi'' = -gamma there; :mod:`bounce.power_sticky`):
+
+        F' = f'(xi) xi' + 2 mu b |xi|^(b-1) sign(xi) xi'^2 + 2 mu |xi|^b xi'',  xi'' = -gamma - F/2.
+
+    gamma + f is formed without cancellation (:func:`bounce.power_series.restoring_excess`).
+    The noises are 8 eps times the magnitudes of the terms (the rounding of forming them):
+    within them F, F' count as zero (approximation at the rounding level, as in
+    :func:`bounce.events._at_rest_is_sticky`).  At xi = 0 with b > 0, F = -gamma: F' is not
+    needed there and its singular term is dropped.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi = law[L_XI_EQ] + eta
+    w = abs(xi)
+    p0, q0 = powers_at(w, law)
+    excess = restoring_excess(eta, p0, law)  # gamma + f(xi)
+    damp = 2.0 * mu * v * q0
+    F = (excess - 2.0 * gamma) + damp
+    noise_F = 8.0 * EPS * (abs(excess - gamma) + gamma + abs(damp))
+    if w > 0.0:
+        fp = law[L_AP1] * rho * p0 / w
+        bend = 2.0 * mu * law[L_B] * q0 / w * v * v * (1.0 if xi > 0.0 else -1.0)
+    else:
+        fp = rho if law[L_ANALYTIC_A] == 1.0 else 0.0
+        bend = 0.0
+    xidd = -gamma - 0.5 * F
+    Fp = fp * v + bend + 2.0 * mu * q0 * xidd
+    noise_Fp = 8.0 * EPS * (abs(fp * v) + abs(bend) + 2.0 * mu * q0 * (gamma + 0.5 * abs(F)))
+    return F, Fp, noise_F, noise_Fp
+
+
+@njit(cache=True)
+def at_rest_is_sticky(v, eta, law):
+    """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0 and F' <= 0)?
+
+    The decision of :func:`bounce.events._at_rest_is_sticky` for the power law (eq.
+    ``cond_di_distacco``: it leaves only if F > 0, or F = 0 and F' > 0), within the noises of
+    :func:`floor_force`.  The flight's lift-off and the sticky phase's start both use it, so
+    a detach is never followed by an immediate sticky start or the reverse.
+    """
+    F, Fp, noise_F, noise_Fp = floor_force(v, eta, law)
+    if F > noise_F:
+        return False
+    if F < -noise_F:
+        return True
+    return Fp <= noise_Fp
+
+
+@njit(cache=True)
 def crossing_halfwidth(v, Es, law):
     """delta of the window through xi = 0 (module docstring); 0 if v = 0."""
     if v == 0.0:
@@ -200,18 +257,27 @@ def _minimum(s0, s1, x, xl, u, ul, gamma, H, K, X):
 
 
 @njit(cache=True)
-def _liftoff(acc, h, radius, Rz, Rp, K, X):
-    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0.
+def _liftoff(acc, jerk, h, radius, Rz, Rp, K, X):
+    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0, or
+    with acc = 0 and x'''(0) = jerk > 0 (a detach: F = 0, F' > 0, eq. ``cond_di_distacco``).
 
-    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S]; S halves until positive.
+    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S], and for acc = 0
+    x(s) >= s^3 (jerk/6 - sum_{k>=4} |X_k| S^(k-3)) - tail(S) (X_k in units of the radius; the
+    subtracted terms grow with s); S halves until the bracket is positive.  0 if neither case.
     """
+    if not (acc > 0.0 or jerk > 0.0):
+        return 0.0
+    first = 3 if acc > 0.0 else 4
     S = h
     for _ in range(400):
         poly = 0.0
-        for k in range(K, 2, -1):
+        for k in range(K, first - 1, -1):
             poly = poly * (S / radius) + abs(X[k])
         tail = tail_bounds(S / radius, K, Rz, Rp)[0]
-        if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
+        if acc > 0.0:
+            if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
+                return S
+        elif jerk / 6.0 > poly * S / radius**4 + tail / (S * S * S):
             return S
         S *= 0.5
     return 0.0
@@ -224,9 +290,11 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
     Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
     ``(status, tau, x'(tau), scale, eta(tau), xi'(tau), x''(tau), x'''(tau))``:
     status FOUND (polished root, or a minimum within rounding of the floor),
-    HORIZON (no contact up to t_limit), AT_REST (x = u = 0 and x'' <= 0: the mass
-    cannot lift off) or FAILED (evaluation cap, or a floor contact inside a crossing
-    window); the other fields are meaningful at FOUND only.  The state is carried
+    HORIZON (no contact up to t_limit: then the fields are (HORIZON, t_limit,
+    x'(t_limit), x(t_limit), eta(t_limit), xi'(t_limit), 0, 0), the state there for the
+    dense output of :mod:`bounce.sampling`), AT_REST (x = u = 0 and the mass stays,
+    :func:`at_rest_is_sticky`; then the last two fields are F and F') or FAILED
+    (evaluation cap, or a floor contact inside a crossing window).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
     that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
     """
@@ -254,7 +322,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             root = math.sqrt(u * u + 2.0 * gamma * x)
             s = (u + root) / gamma if u >= 0.0 else 2.0 * x / (root - u)
             if t + s > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+                s = t_limit - t
+                return HORIZON, t_limit, u - gamma * s, x + (u * s - 0.5 * gamma * s * s), eta + el, v + vl, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         delta = crossing_halfwidth(v, Es, law) if singular else 0.0
@@ -280,8 +349,15 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 return SLOW_CROSSING, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             if not (x == 0.0 and u == 0.0) and safe_step(x + xl, u + ul, B) <= T:
                 return SLOW_CROSSING, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # the floor may be reached inside
-            if t + T > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            if t + T > t_limit:  # the state part-way through the window (for dense output)
+                T = t_limit - t
+                if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
+                    dv = v * math.expm1(-2.0 * mu * T)
+                    d = -dv / (2.0 * mu)
+                else:
+                    d, dv = v * T, 0.0
+                xs = (x + (u * T - 0.5 * gamma * T * T) + (v * T - d)) + (xl + ul * T)
+                return HORIZON, t_limit, (u - gamma * T - dv) + ul, xs, eta + (d + (el + vl * T)), (v + dv) + vl, 0.0, 0.0
             # x = psi - xi: psi moves by (u + v) T - gamma T^2/2, xi by d
             x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
             u, ul = compensated_add(u, ul, -gamma * T - dv)
@@ -306,14 +382,15 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
         last = t + h >= t_limit
         if last:
             h = t_limit - t
-        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, radius, K, X, P, Q)
+        taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, radius, K, X, P, Q)
         s = 0.0
         xs, vs = x + xl, u + ul
         if x == 0.0 and u == 0.0:
-            acc = -gamma - 2.0 * X[2] / (radius * radius)
-            if not acc > 0.0:
-                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3] / radius**3
-            s = _liftoff(acc, h, radius, Rz, Rp, K, X)
+            # at rest on the floor: x'' = F, x''' = F' (floor_force); F within its noise is 0
+            F, Fp, noise_F, _ = floor_force(v, eta, law)
+            if at_rest_is_sticky(v, eta, law):
+                return AT_REST, 0.0, 0.0, 0.0, eta, v, F, Fp
+            s = _liftoff(F if F > noise_F else 0.0, Fp, h, radius, Rz, Rp, K, X)
             if s == 0.0:
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
@@ -339,8 +416,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                     return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X)
             if at_end:
                 break
-        if last:
-            return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        if last:  # xs, vs, D, Dp are at s = h: the state at t_limit (for dense output)
+            return HORIZON, t_limit, vs, xs, eta + ((v * h + D) + (el + vl * h)), (v + Dp) + vl, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
         u, ul = compensated_add(u, ul, -gamma * h - Dp)
         eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
@@ -397,7 +474,7 @@ def short_flight(u, v, eta, law, X, P, Q):
         tk *= theta
         if K > DEGREE_SHORT:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, 1.0, K, X, P, Q)
+    taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
     B = _curvature_bound_near(w0, v, p0, q0, law)
     A0 = -gamma - 2.0 * X[2]
     disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
