@@ -258,26 +258,26 @@ def _minimum(s0, s1, x, xl, u, ul, gamma, H, K, X):
 
 @njit(cache=True)
 def _liftoff(acc, jerk, h, radius, Rz, Rp, K, X):
-    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0, or
-    with acc = 0 and x'''(0) = jerk > 0 (a detach: F = 0, F' > 0, eq. ``cond_di_distacco``).
+    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc >= 0 and
+    x'''(0) = jerk, acc > 0 or jerk > 0 (acc = 0, jerk > 0: a detach, eq. ``cond_di_distacco``).
 
-    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S], and for acc = 0
-    x(s) >= s^3 (jerk/6 - sum_{k>=4} |X_k| S^(k-3)) - tail(S) (X_k in units of the radius; the
-    subtracted terms grow with s); S halves until the bracket is positive.  0 if neither case.
+    With X_k in units of the radius, x(s) >= s^2 (acc/2 + jerk s/6 - R(s)) where
+    R(s) = sum_{k>=4} |X_k| s^(k-2) / radius^k + tail(s)/s^2 grows at least like s^2, so the
+    concave bracket is positive on (0, S] once it is at S (jerk > 0); for jerk <= 0 the
+    X_3 term joins R: acc/2 > sum_{k>=3} |X_k| S^(k-2) / radius^k + tail(S)/S^2.
+    S halves until the bracket is positive; 0 if neither acc > 0 nor jerk > 0.
     """
     if not (acc > 0.0 or jerk > 0.0):
         return 0.0
-    first = 3 if acc > 0.0 else 4
+    first = 4 if jerk > 0.0 else 3
     S = h
     for _ in range(400):
         poly = 0.0
         for k in range(K, first - 1, -1):
             poly = poly * (S / radius) + abs(X[k])
-        tail = tail_bounds(S / radius, K, Rz, Rp)[0]
-        if acc > 0.0:
-            if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
-                return S
-        elif jerk / 6.0 > poly * S / radius**4 + tail / (S * S * S):
+        poly *= (S / radius) ** first / (S * S)
+        tail = tail_bounds(S / radius, K, Rz, Rp)[0] / (S * S)
+        if 0.5 * acc + (jerk * S / 6.0 if jerk > 0.0 else 0.0) > poly + tail:
             return S
         S *= 0.5
     return 0.0

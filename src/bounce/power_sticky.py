@@ -292,9 +292,17 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
                 if found:
                     if dps < 0.0 and ps > 0.0:
                         s -= ps / dps  # Newton polish of the root of p
-                    D, Dp = displacement(s, radius, K, X)
+                    for _ in range(4):
+                        # polish on F itself, formed from the state at s as the lift-off forms it
+                        # (floor_force): the series' p carries the rounding of its larger terms
+                        D, Dp = displacement(s, radius, K, X)
+                        v_s, eta_s = (v + Dp) + vl, eta + ((v * s + D) + (el + vl * s))
+                        F, Fp, noise_F, _ = floor_force(v_s, eta_s, law)
+                        if abs(F) <= noise_F or not Fp > 0.0:
+                            break
+                        s -= F / Fp
                     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
-                    return FOUND, t_hi + t_lo, (v + Dp) + vl, eta + ((v * s + D) + (el + vl * s))
+                    return FOUND, t_hi + t_lo, v_s, eta_s
             if s < h:
                 return FAILED, t, v, eta  # evaluation cap
         D, Dp = displacement(h, radius, K, X)
