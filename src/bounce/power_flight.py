@@ -162,7 +162,8 @@ def floor_force(v, eta, law):
         F' = f'(xi) xi' + 2 mu b |xi|^(b-1) sign(xi) xi'^2 + 2 mu |xi|^b xi'',  xi'' = -gamma - F/2.
 
     gamma + f is formed without cancellation (:func:`bounce.power_series.restoring_excess`).
-    The noises are 8 eps times the magnitudes of the terms (the rounding of forming them):
+    The noises are 8 eps times the magnitudes of the terms (gamma + f, 2 gamma, the damping;
+    for a = b = 0, rho = 1 those of :func:`bounce.events._at_rest_is_sticky`):
     within them F, F' count as zero (approximation at the rounding level, as in
     :func:`bounce.events._at_rest_is_sticky`).  At xi = 0 with b > 0, F = -gamma: F' is not
     needed there and its singular term is dropped.
@@ -176,7 +177,7 @@ def floor_force(v, eta, law):
     excess = restoring_excess(eta, p0, law)  # gamma + f(xi)
     damp = 2.0 * mu * v * q0
     F = (excess - 2.0 * gamma) + damp
-    noise_F = 8.0 * EPS * (abs(excess - gamma) + gamma + abs(damp))
+    noise_F = 8.0 * EPS * (abs(excess) + 2.0 * gamma + abs(damp))
     if w > 0.0:
         fp = law[L_AP1] * rho * p0 / w
         bend = 2.0 * mu * law[L_B] * q0 / w * v * v * (1.0 if xi > 0.0 else -1.0)
@@ -284,7 +285,7 @@ def _liftoff(acc, jerk, h, radius, Rz, Rp, K, X):
 
 
 @njit(cache=True)
-def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
+def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     """First time tau in (0, t_limit] with x(tau) = 0 for the flight from (x, u, v, eta).
 
     Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
@@ -297,6 +298,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
     (evaluation cap, or a floor contact inside a crossing window).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
     that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
+    ``lifting``: the caller knows that a start at rest lifts off (dense output of a recorded
+    flight; F, F' within rounding of the at-rest boundary are then taken as a lift-off).
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]
@@ -388,7 +391,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
         if x == 0.0 and u == 0.0:
             # at rest on the floor: x'' = F, x''' = F' (floor_force); F within its noise is 0
             F, Fp, noise_F, _ = floor_force(v, eta, law)
-            if at_rest_is_sticky(v, eta, law):
+            if not lifting and at_rest_is_sticky(v, eta, law):
                 return AT_REST, 0.0, 0.0, 0.0, eta, v, F, Fp
             s = _liftoff(F if F > noise_F else 0.0, Fp, h, radius, Rz, Rp, K, X)
             if s == 0.0:
