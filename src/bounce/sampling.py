@@ -97,8 +97,8 @@ def _sample_power(times, order, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0
                 status, _, v1, v2, eta_t, xid_t, _, _ = first_contact(x, u, a, eta, dt, law, X, P, Q, True)
                 if status == FOUND:  # a contact within rounding before the recorded one: at the floor
                     x, u = 0.0, v1
-                else:  # HORIZON: (x'(ts), x(ts))
-                    x, u = max(v2, 0.0), v1
+                else:  # HORIZON: (x'(ts), x(ts)), not clipped (a rounding-level -1e-17 shows as such)
+                    x, u = v2, v1
                 a, eta = xid_t, eta_t
             t0 = ts
         out_x[j] = x
