@@ -129,3 +129,28 @@ def test_x_never_below_the_floor_in_flight(psi0, xi0, xidot0, mu, spring):
     s = sample_trajectory(tr, times)
     flying = ~np.isnan(s["x"])
     assert np.all(s["x"][flying] >= -4 * np.finfo(float).eps * state_scale(s, gamma)[flying])
+
+
+def test_cli_samples_a_power_law_run_with_a_sticky_phase(tmp_path):
+    """python -m bounce simulate --spring power ... --dt-sample: a Hertz rest state pressed onto the
+    floor (y0 = 2 xi + 1, xi = -0.0696, ydot0 = 2 xi' = -0.4) goes sticky, detaches and flies; the
+    file holds the events and the samples, x = 0 on the sticky phase and x > 0 after the lift-off."""
+    import subprocess
+    import sys
+
+    import xarray as xr
+
+    out = tmp_path / "hertz.nc"
+    run = subprocess.run(
+        [sys.executable, "-m", "bounce", "simulate", "--gamma", "0.01", "--mu", "0.5", "--spring", "power",
+         "--rho", "1", "--a", "0.5", "--b", "0.5", "--x0", "0", "--xdot0", "0", "--y0", "0.8608", "--ydot0", "-0.4",
+         "--events", "5", "--dt-sample", "0.05", "--out", str(out)],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert run.returncode == 0, run.stderr
+    with xr.open_dataset(out) as ds:
+        kinds = list(ds["kind"].values[:2])
+        t_detach = float(ds["t"].values[1])
+        t, x = ds["time"].values, ds["sampled_x"].values
+    assert kinds == [2, 3]
+    assert np.all(x[t < t_detach] == 0.0) and np.all(x[(t > t_detach + 1.0) & (t < t_detach + 5.0)] > 0.0)
