@@ -203,3 +203,25 @@ def test_sticky_records_follow_the_rules(xi_over_eq, v, mu, gamma, spring):
             assert tr.xdot[i] == 0.0
     e = tr.energy_excess
     assert np.all(np.diff(e) <= 1e-12 * np.maximum(e[:-1], gamma**2))
+
+
+@pytest.mark.parametrize("spring", [HERTZ, PowerSpring(0.5, 0.25, 1.0)], ids=["hertz", "rho0.5_a0.25_b1"])
+def test_never_detach_criterion_is_sharp_without_damping_power_law(spring):
+    """mu = 0: F = f(xi) - gamma is largest at the upper turning point xi_up of the sticky orbit, and
+    F(xi_up) = 0 at xi_up = |xi_eq| (f(|xi_eq|) = gamma).  From the equilibrium with the sticky
+    energy that reaches xi_up = |xi_eq| (1 -+ 1e-8): proved infinite just below, a detach just above
+    (v^2 = Bg(xi_up - xi_eq), Bg(e) = V(xi_eq + e) - V(xi_eq) + gamma e, V = rho |xi|^(a+2)/(a+2))."""
+    gamma = 0.05
+    xi_eq = spring.xi_eq(gamma)
+
+    def potential(xi):
+        return spring.rho * abs(xi) ** (spring.a + 2) / (spring.a + 2)
+
+    for factor, expected in ((1 - 1e-8, "sticky_forever"), (1 + 1e-8, "max_events")):
+        e_up = -xi_eq * factor - xi_eq
+        v = np.sqrt(potential(xi_eq + e_up) - potential(xi_eq) + gamma * e_up)
+        tr = simulate_power(Parameters(gamma, 0.0, spring), spring, Deviations(0.0, 0.0, v, 0.0), max_events=2)
+        assert tr.stop_reason == expected, (factor, tr.kind_names, tr.stop_reason)
+        if expected == "max_events":
+            assert tr.kind_names == ("sticky_start", "detach")
+            assert abs(xi_eq + tr.eta[1] + xi_eq) <= 1e-6 * -xi_eq  # at the turning point |xi_eq|
