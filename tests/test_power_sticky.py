@@ -225,3 +225,19 @@ def test_never_detach_criterion_is_sharp_without_damping_power_law(spring):
         if expected == "max_events":
             assert tr.kind_names == ("sticky_start", "detach")
             assert abs(xi_eq + tr.eta[1] + xi_eq) <= 1e-6 * -xi_eq  # at the turning point |xi_eq|
+
+
+@pytest.mark.parametrize("g, mu, T", [(0.01, 0.3, 0.4), (1e-3, 1.5, 0.1)])
+def test_sticky_onset_from_a_flight_classified_as_the_linear_model(g, mu, T):
+    """a = b = 0, rho = 1: the constructed sticky onset of test_events (a flight ending with
+    x = x' = x'' = 0, x''' < 0; eq. sticky-condition) gives the same records as the closed form:
+    sticky_start within twice the contact window of T (the shared classifier, bounce.events.contact,
+    fed the whole flight's rounding scale), then the same end of the sticky phase."""
+    from test_events import constructed_contact, rounding_level
+
+    d = constructed_contact(g, mu, mu * g, 0.0, T)
+    ref = simulate(Parameters(g, mu), d, max_events=2, t_max=1e3)
+    tr = simulate_power(Parameters(g, mu), LINEAR, d, max_events=2, t_max=1e3)
+    assert tr.kind_names == ref.kind_names and tr.stop_reason == ref.stop_reason, (tr.kind_names, ref.kind_names)
+    window = (6 * rounding_level(d, g, T) / (mu * g)) ** (1 / 3)
+    assert tr.kind[0] == STICKY_START and abs(tr.t[0] - T) <= 2 * window and tr.xdot[0] == 0.0

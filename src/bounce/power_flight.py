@@ -306,6 +306,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     mu = law[L_MU]
     xi_eq = law[L_XI_EQ]
     singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
+    start = (x, u, v, eta)
     K = DEGREE_LONG
     t_hi, t_lo = 0.0, 0.0
     xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
@@ -411,12 +412,12 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 if vs < 0.0:  # Newton polish, re-evaluated at the polished time
                     s = s - xs / vs
                     xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
-                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X, start)
             if v_prev < 0.0 <= vs:
                 sm = _minimum(s_prev, s, x, xl, u, ul, gamma, radius, K, X)
                 xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, radius, K, X)
                 if xm <= 4.0 * EPS * sc_m:
-                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X)
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X, start)
             if at_end:
                 break
         if last:  # xs, vs, D, Dp are at s = h: the state at t_limit (for dense output)
@@ -430,11 +431,22 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
 
 
 @njit(cache=True)
-def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X):
-    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
+def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X, start):
+    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''').
+
+    The rounding scale of x at the contact is the larger of the step's and the flight's,
+    x0 + |u0| tau + gamma tau^2/2 + |xi(tau) - xi0 - v0 tau| from the flight's start
+    ``start`` = (x0, u0, v0, eta0): the terms of eq. (P) over the whole flight, like the linear
+    flight's scale (:func:`bounce.flight.gap`), so that the contact classifier
+    (:func:`bounce.events.contact`) sees the uncertainty the start state's own rounding leaves.
+    """
     D2, D3 = curvature(s, H, K, X)
     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
-    return FOUND, t_hi + t_lo, vs, scale, eta + ((v * s + D) + (el + vl * s)), (v + Dp) + vl, -gamma - D2, -D3
+    tau = t_hi + t_lo
+    eta_t = eta + ((v * s + D) + (el + vl * s))
+    x0, u0, v0, eta0 = start
+    scale = max(scale, x0 + abs(u0) * tau + 0.5 * gamma * tau * tau + abs((eta_t - eta0) - v0 * tau))
+    return FOUND, tau, vs, scale, eta_t, (v + Dp) + vl, -gamma - D2, -D3
 
 
 @njit(cache=True)
@@ -519,4 +531,4 @@ def short_flight(u, v, eta, law, X, P, Q):
     if vs < 0.0:
         s -= xs / vs
         xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
-    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X, (0.0, u, v, eta))

@@ -70,7 +70,7 @@ from numba import njit
 
 from .events import compensated_add
 from .flight import EPS, FAILED, FOUND, HORIZON, NEVER, safe_step
-from .power_flight import SLOW_CROSSING, TOL_LONG, at_rest_is_sticky, crossing_halfwidth, floor_force
+from .power_flight import SLOW_CROSSING, TOL_LONG, crossing_halfwidth, floor_force
 from .power_series import (
     DEGREE_LONG,
     L_ANALYTIC_A,
@@ -178,7 +178,8 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
     """Integrate the sticky phase from (xi' = v, eta) for at most t_limit.
 
     Returns ``(status, duration, xi', eta)`` at its end: FOUND (detach, eq.
-    ``cond_di_distacco``; duration 0 if the state does not rest, :func:`at_rest_is_sticky`),
+    ``cond_di_distacco``; duration 0 if F = 0 and F' > 0 at the start, where F >= 0 counts as
+    F = 0: the phase follows a sticky start, decided by the caller),
     NEVER (proved infinite at that time), HORIZON (still sticky at t_limit: the state there),
     SLOW_CROSSING or FAILED.  ``dense``: integrate to t_limit without the proof and the
     detach search (dense output of a phase whose end is known from the records).
@@ -193,10 +194,12 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
     el, vl = 0.0, 0.0
     opening = 0  # the phase starts with F = 0 to rounding: 1 F' < 0, 2 F' = 0 too
     if not dense:
-        if not at_rest_is_sticky(v, eta, law):
-            return FOUND, 0.0, v, eta  # F = 0, F' > 0 (or F > 0): detach at once
         F, Fp, noise_F, noise_Fp = floor_force(v, eta, law)
         if F >= -noise_F:
+            # F >= 0 at a sticky start counts as F = 0, as in bounce.events._sticky_phase: an onset
+            # classified within the contact's rounding window may carry F ~ |F'| delta3 > 0
+            if Fp > noise_Fp:
+                return FOUND, 0.0, v, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
             opening = 1 if Fp < -noise_Fp else 2
     steps = 0
     while steps < MAX_STEPS:
