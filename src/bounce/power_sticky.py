@@ -29,10 +29,16 @@ tail_p = Rz (K+1) K theta^(K-1) / (r_c^2 (1 - theta (K+2)/K)) (Cauchy's estimate
 |X_k| <= Rz, as in :mod:`bounce.power_series`).  The march steps by the smallest root of
 p + p' s - B_p s^2/2 (so p stays positive between points) and stops where p is within
 tail_p + noise (noise: 8 eps of its terms) of zero; a root there with p' < 0 is polished by a
-Newton step.  The only crossings it can miss are dips of F above zero smaller than its own
-rounding.  A minimum of p within that level is a tangential touch and ends the phase like a
-root, as in the linear model (:func:`bounce.events._sticky_phase`); the flight that follows
-then decides with :func:`bounce.power_flight.at_rest_is_sticky` whether the mass stays.
+Newton step on p, then by Newton steps on F formed from the state at the root
+(:func:`bounce.power_flight.floor_force`, as the lift-off forms it: p carries the rounding of
+its larger terms, ~1e-17 when gamma << |xi''|).  The only crossings it can miss are dips of F
+above zero smaller than its own rounding.  At the start of a phase F >= 0 within the contact's
+rounding window counts as F = 0 (as in :func:`bounce.events._sticky_phase`): the phase then
+detaches at once if F' > 0, and otherwise starts the march where p has certainly opened up
+(p >= p' s - B_p s^2/2, or p >= p'' s^2/2 - B_5 s^3/6 when F' = 0 too).  A minimum of p
+within that level is a tangential touch and ends the phase like a root, as in the linear
+model; the flight that follows then decides with :func:`bounce.power_flight.at_rest_is_sticky`
+whether the mass stays (then a new sticky_start is recorded at the same time).
 
 Never detaching (the linear criterion generalised).  The sticky energy
 E_st = xi'^2/2 + (gamma xi + V(xi))/2, V = rho |xi|^(a+2)/(a+2), does not increase
@@ -45,9 +51,10 @@ eta <= eta_up (Bg(eta_up) = T), |xi| <= W and |xi'| <= sqrt(T); f increases, so 
 
 If this is negative the phase is proved infinite (stop reason ``sticky_forever``).  This is
 the linear model's envelope criterion with the energy for the amplitude: for a = b = 0,
-rho = 1 it reads (1 + 2 mu) sqrt(T) < 2 gamma, T = xi'^2 + eta^2/2, exact for mu = 0 and
-otherwise a sufficient condition that the decaying energy meets within a few damping times
-(the envelope criterion of :mod:`bounce.events` may fire earlier; the records are the same).
+rho = 1 (Bg = eta^2/2, eta_up = sqrt(2 T)) it reads (sqrt(2) + 2 mu) sqrt(T) < 2 gamma,
+T = xi'^2 + eta^2/2: exact for mu = 0 (sqrt(2 T) is then the amplitude of eta), otherwise a
+sufficient condition that the decaying energy (T -> 0, F -> -2 gamma) eventually meets; the
+envelope criterion of :mod:`bounce.events` may fire earlier, the records are the same.
 eta_up and the lower extent are bracketed by doubling and bisection, rounded outwards.
 
 The non-analytic point xi = 0 (a, b not both 0) is crossed in a window as in
