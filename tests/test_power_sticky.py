@@ -180,7 +180,7 @@ def test_sticky_phase_crossing_the_rest_length():
 
 # ------------------------------------------------------------------ invariants
 @SETTINGS
-@given(xi_over_eq=st.floats(0.3, 1.7), v=st.floats(-0.4, 0.4), mu=st.sampled_from([0.0, 0.1, 0.5, 1.0]),
+@given(xi_over_eq=st.floats(-0.9, 1.7), v=st.floats(-0.4, 0.4), mu=st.sampled_from([0.0, 0.1, 0.5, 1.0]),
        gamma=st.sampled_from([0.01, 0.05]), spring=st.sampled_from([HERTZ, PowerSpring(2.0, 1.0, 0.0),
                                                                      PowerSpring(0.5, 0.25, 1.0)]))
 def test_sticky_records_follow_the_rules(xi_over_eq, v, mu, gamma, spring):
