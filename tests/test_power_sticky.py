@@ -241,3 +241,15 @@ def test_sticky_onset_from_a_flight_classified_as_the_linear_model(g, mu, T):
     assert tr.kind_names == ref.kind_names and tr.stop_reason == ref.stop_reason, (tr.kind_names, ref.kind_names)
     window = (6 * rounding_level(d, g, T) / (mu * g)) ** (1 / 3)
     assert tr.kind[0] == STICKY_START and abs(tr.t[0] - T) <= 2 * window and tr.xdot[0] == 0.0
+
+
+def test_t_max_inside_a_sticky_phase():
+    """A sticky phase still running at t_max stops with t_max (not a guessed detach): the Hertz
+    case of the reference test detaches at t = 5.5057...; with t_max = 3 and 6 the records differ
+    only by the detach."""
+    spring, gamma, mu, xi, v = STICKY_CASES["hertz_detach"]
+    start = Deviations(0.0, 0.0, v, xi - spring.xi_eq(gamma))
+    short = simulate_power(Parameters(gamma, mu, spring), spring, start, max_events=3, t_max=3.0)
+    longer = simulate_power(Parameters(gamma, mu, spring), spring, start, max_events=3, t_max=6.0)
+    assert short.stop_reason == "t_max" and short.kind_names == ("sticky_start",)
+    assert longer.kind_names[:2] == ("sticky_start", "detach") and 5.5 < longer.t[1] < 5.51
