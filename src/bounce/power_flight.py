@@ -105,7 +105,7 @@ TOL_LONG = 2.0**-64
 MAX_EVALS = 400_000
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
-#: status: the flight starts at rest on the floor with x'' <= 0 (a sticky state).
+#: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
 AT_REST = 5
 #: status: a crossing of xi = 0 too slow for the window to be exact to rounding, or a window that
 #: may contain the floor contact (see module docstring).
