@@ -580,3 +580,91 @@ def reference_first_impact(gamma, mu, rho, a, b, x, xdot, xidot, xi, dps=DPS) ->
             x_min_interior=xmin, t_min_interior=tmin,
             energy_start=fl.energy(mpf(0)), energy_end=fl.energy(tau),
         )
+
+
+# --------------------------------------------------------------------------------------------
+# the sticky phase (lower mass at rest on the floor)
+# --------------------------------------------------------------------------------------------
+#
+# Derived here from the Discussion's equations alone: with the floor holding the lower mass,
+# x = 0 and y = 2 xi + 1; the upper mass obeys y'' = -gamma - S, S = rho xi |xi|^a + 2 mu xi' |xi|^b
+# (the spring's push on the lower mass), so xi'' = -(gamma + S)/2, and the floor must supply
+# -F, F = S - gamma (eq. force-on-the-floor for the linear law).  The phase ends at the first
+# F = 0 with F' > 0 (eq. cond_di_distacco).  On xi < 0, z = -xi > 0 obeys
+#
+#     z'' = gamma/2 - (rho/2) z^(a+1) - mu z' z^b,        F = 2 z'' - 2 gamma,
+#
+# integrated by Taylor steps in mpf arithmetic (powers z^p by Miller's recurrence, coefficients
+# of t^k unscaled), degree STICKY_DEGREE, step a quarter of the coefficients' root-test radius
+# (so the neglected terms are ~4^-degree of the kept ones; checked by a second precision in the
+# tests), shortened until z stays within [z0/2, 2 z0] (the cases used keep xi < 0).  The detach
+# is the first sign change - to + of F on STICKY_SAMPLES samples per step, refined by bisection on
+# the step's polynomial: a reference for transversal detachments, not a proof against a
+# tangential touch between samples.
+
+STICKY_DEGREE = 60
+STICKY_SAMPLES = 64
+
+
+def _sticky_coefficients(c, r, m, p, b, z0, z1, n):
+    """Coefficients z_k of z(t0 + t) = sum z_k t^k for z'' = c - r z^p - m z' z^b, z(t0) = z0 > 0."""
+    Z, P, Q = [z0, z1], [z0**p], [z0**b]
+    for k in range(n - 1):
+        if k:
+            P.append(sum((p * j - (k - j)) * Z[j] * P[k - j] for j in range(1, k + 1)) / (k * z0))
+            Q.append(sum((b * j - (k - j)) * Z[j] * Q[k - j] for j in range(1, k + 1)) / (k * z0))
+        damping = sum((j + 1) * Z[j + 1] * Q[k - j] for j in range(k + 1))
+        Z.append(((c if k == 0 else 0) - r * P[k] - m * damping) / ((k + 1) * (k + 2)))
+    return Z
+
+
+def _poly(Z, t, order):
+    """order-th derivative of sum Z_k t^k at t."""
+    acc = mpf(0)
+    for k in range(len(Z) - 1, order - 1, -1):
+        f = 1
+        for j in range(order):
+            f *= k - j
+        acc = acc * t + f * Z[k]
+    return acc
+
+
+def reference_sticky(gamma, mu, rho, a, b, xidot, xi, t_end, dps=DPS) -> dict:
+    """The sticky phase from (xi', xi), xi < 0, at rest on the floor, up to its detach or t_end.
+
+    Returns mpf values ``t_detach`` (None if F < 0 on (0, t_end]) and the state there or at t_end:
+    ``xi``, ``xidot``; also ``F_max``, the largest sampled F (the margin of a 'never').
+    """
+    with mp.workdps(dps):
+        g, m_, rho_, a_, b_ = (M(v) for v in (gamma, mu, rho, a, b))
+        c, r, p = g / 2, rho_ / 2, a_ + 1
+        z, zd = -M(xi), -M(xidot)
+        t = mpf(0)
+        F_max = -mp.inf
+        t_end = M(t_end)
+        while t < t_end:
+            if not z > 0:
+                raise RootSearchError("the sticky reference needs xi < 0")
+            Z = _sticky_coefficients(c, r, m_, p, b_, z, zd, STICKY_DEGREE)
+            radius = min(abs(Z[k]) ** (-mpf(1) / k) for k in range(STICKY_DEGREE // 2, STICKY_DEGREE + 1) if Z[k] != 0)
+            h = min(radius / 4, t_end - t)
+            while not all(z / 2 <= _poly(Z, h * i / 8, 0) <= 2 * z for i in range(1, 9)):
+                h /= 2
+            prev = 2 * _poly(Z, mpf(0), 2) - 2 * g
+            for i in range(1, STICKY_SAMPLES + 1):
+                s = h * i / STICKY_SAMPLES
+                F = 2 * _poly(Z, s, 2) - 2 * g
+                F_max = max(F_max, F)
+                if prev < 0 <= F:
+                    lo, hi = s - h / STICKY_SAMPLES, s
+                    while hi - lo > (t + hi) * mpf(2) ** (-mp.prec + 8):
+                        mid = (lo + hi) / 2
+                        if 2 * _poly(Z, mid, 2) - 2 * g < 0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    return dict(t_detach=t + hi, xi=-_poly(Z, hi, 0), xidot=-_poly(Z, hi, 1), F_max=F_max)
+                prev = F
+            z, zd = _poly(Z, h, 0), _poly(Z, h, 1)
+            t += h
+        return dict(t_detach=None, xi=-z, xidot=-zd, F_max=F_max)

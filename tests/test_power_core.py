@@ -267,15 +267,15 @@ def test_energy_never_rises_and_no_collapse(spring):
 
 # ------------------------------------------------------------ rest on the floor
 @pytest.mark.parametrize("spring", LAWS)
-def test_rest_at_equilibrium_is_a_sticky_onset_and_stops(spring):
+def test_rest_at_equilibrium_is_a_sticky_onset_for_ever(spring):
     """At rest on the floor at the static equilibrium (eq. nonlin-equilibrium-xi) the floor force is
-    -2 gamma < 0: a sticky state.  Its phase is not integrated: one sticky_start record and the stop
-    reason says so (no guessed continuation)."""
+    -2 gamma < 0: a sticky state, and the sticky energy is at its minimum, so the phase is proved
+    infinite at once (power_sticky.never_detaches): one sticky_start record, stop sticky_forever."""
     tr = simulate_power(Parameters(0.02, 0.1), spring, Deviations(x=0.0, xdot=0.0, xidot=0.0, eta=0.0),
                         max_events=5)
-    assert tr.stop_reason == "sticky_unsupported"
+    assert tr.stop_reason == "sticky_forever"
     assert len(tr) == 1 and tr.kind_names == ("sticky_start",)
-    assert tr.energy_excess[0] == 0.0
+    assert tr.energy_excess[0] == 0.0 and tr.t_end == 0.0
 
 
 @pytest.mark.parametrize("spring", LAWS)

@@ -8,25 +8,18 @@ xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), and at x = 0
   psi' and xi' are exchanged: u -> -x'(tau), a -> psi'(tau^-) = u + a - gamma tau;
 * **grazing** (eq. ``swishes``): a tangential contact with x'' > 0, nothing exchanged;
 * **sticky_start** (eq. ``sticky-condition``): x = x' = x'' = 0, or a start at rest on
-  the floor with x'' <= 0.  The sticky phase of the nonlinear spring is not integrated
-  yet: the loop records the onset and stops with stop reason ``sticky_unsupported``
-  (never a guessed continuation).  Its equation, for the record: with the floor
-  reaction R >= 0 on the lower mass, x'' = -gamma + f(xi) + 2 mu xi' |xi|^b + R and
-  y'' = -gamma - f(xi) - 2 mu xi' |xi|^b (eq. ``eq-motion-nonlin-psi-xi`` written for
-  x = psi - xi, y = psi + xi + 1); x = 0 gives xi = (y - 1)/2 and
+  the floor that stays (:func:`bounce.power_flight.at_rest_is_sticky`); the sticky phase
+  of the nonlinear spring (its equation and floor force are derived in
+  :mod:`bounce.power_sticky`) is integrated by Taylor series until
+* **detach** (eq. ``cond_di_distacco``): the first F = 0 with F' > 0; the flight that
+  follows lifts off from x = x' = 0 (quadratically, or cubically when F = 0, F' > 0).
+  A tangential touch of F = 0 ends the phase as in the linear model, and the flight then
+  records a new sticky_start at once (tau = 0) if the mass stays.
 
-      xi'' = -(gamma + f(xi) + 2 mu xi' |xi|^b) / 2,    f(xi) = rho xi |xi|^a,
-
-  with the floor force F = f(xi) + 2 mu xi' |xi|^b - gamma = -2 (gamma + xi'') (the x''
-  of the free motion; eq. ``force-on-the-floor`` for a = b = 0, rho = 1), R = -F >= 0.
-  Detachment is the first F = 0 with F' > 0 (eq. ``cond_di_distacco``).  The sticky
-  equation has the same equilibrium xi_eq (there F = -2 gamma) and the non-increasing
-  energy xi'^2/2 + (gamma xi + V(xi))/2 (rate -mu xi'^2 |xi|^b), which bounds F on the
-  rest of the phase and can prove it infinite as in :mod:`bounce.events`.
-
-Stop reasons: those of :mod:`bounce.events` plus ``sticky_unsupported`` (above) and
-``slow_crossing`` (a crossing of the rest length xi = 0 too slow to be computed to
-rounding, see :mod:`bounce.power_flight`); in both the records up to the stop are exact.
+Stop reasons: those of :mod:`bounce.events` (``sticky_forever``: the sticky phase proved
+infinite, :func:`bounce.power_sticky.never_detaches`) plus ``slow_crossing`` (a crossing of
+the rest length xi = 0 too slow to be computed to rounding, in flight or sticky, see
+:mod:`bounce.power_flight`); the records up to the stop are exact.
 
 Contacts follow :func:`bounce.events.contact` (the impact rule and the rounding-level
 classification of tangential contacts, shared with the linear loop), with x'' and x'''
@@ -51,46 +44,33 @@ import numpy as np
 from numba import njit
 
 from .events import (
-    DETACH,  # noqa: F401  (kind codes of the shared records)
+    DETACH,
     KIND_NAMES,
     STICKY_START,
     STOP_ENERGY,
     STOP_EVENTS,
     STOP_FAILED,
     STOP_NAMES,
+    STOP_STICKY_FOREVER,
     STOP_TIME,
     contact,
     compensated_add,
 )
-from .flight import FOUND, HORIZON
-from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, first_contact, short_flight
-from .power_series import DEGREE_LONG, L_AP1, L_GAMMA, L_XI_EQ, law_array
+from .flight import FOUND, HORIZON, NEVER
+from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, at_rest_is_sticky, first_contact, short_flight
+from .power_sticky import sticky_phase
+from .power_series import DEGREE_LONG, L_GAMMA, L_XI_EQ, bregman, law_array
 
-#: the sticky phase of the nonlinear spring is not integrated: the loop stops at its onset
-STOP_STICKY_UNSUPPORTED = len(STOP_NAMES)
-#: a crossing of the rest length xi = 0 too slow to be computed to rounding (power_flight docstring)
-STOP_SLOW_CROSSING = STOP_STICKY_UNSUPPORTED + 1
-POWER_STOP_NAMES = STOP_NAMES + ("sticky_unsupported", "slow_crossing")
+#: a crossing of the rest length xi = 0 too slow to be computed to rounding (power_flight and
+#: power_sticky docstrings)
+STOP_SLOW_CROSSING = len(STOP_NAMES)
+POWER_STOP_NAMES = STOP_NAMES + ("slow_crossing",)
 
 
 @njit(cache=True)
 def energy_excess(u, a, eta, law):
     """E - E_m at x = 0 (eq. ``nonlin-energy``), the potential part without cancellation."""
-    gamma = law[L_GAMMA]
-    w_eq = -law[L_XI_EQ]
-    p = law[L_AP1] + 1.0
-    e = eta / w_eq
-    if abs(e) <= 0.25:
-        term = -p * e
-        g = 0.0
-        for k in range(2, 200):
-            term *= (p - k + 1.0) / k * -e
-            g += term
-            if abs(term) <= 1e-17 * abs(g) or term == 0.0:
-                break
-    else:
-        g = abs(1.0 - e) ** p - 1.0 + p * e
-    return 0.5 * (a * a + (u + a) * (u + a)) + gamma * w_eq / p * g
+    return 0.5 * (a * a + (u + a) * (u + a)) + bregman(eta, law)
 
 
 @njit(cache=True)
@@ -121,39 +101,49 @@ def run_power_events(
     t_lo = 0.0
     n = 0
     stop = STOP_EVENTS
+    sticky = False
+    if x0 == 0.0 and u == 0.0 and at_rest_is_sticky(a, eta, law):
+        sticky = True
+        _record(0, 0.0, 0.0, STICKY_START, u, a, eta, law, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        n = 1
     while n < max_events:
         t_limit = t_max - (t_hi + t_lo)
-        status = HANDOVER
-        if x0 == 0.0 and u > 0.0:
-            status, tau, v, scale, eta_t, xid_t, acc, jerk = short_flight(u, a, eta, law, X, P, Q)
-            if status == FOUND and tau > t_limit:
-                stop = STOP_TIME
-                break
-        if status == HANDOVER:
-            status, tau, v, scale, eta_t, xid_t, acc, jerk = first_contact(x0, u, a, eta, t_limit, law, X, P, Q)
-            if status == AT_REST:
-                # at rest on the floor with x'' <= 0: a sticky state
-                _record(n, t_hi + t_lo, 0.0, STICKY_START, u, a, eta, law,
-                        out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
-                n += 1
-                stop = STOP_STICKY_UNSUPPORTED
-                break
-            if status == SLOW_CROSSING:
-                stop = STOP_SLOW_CROSSING
-                break
+        if sticky:
+            status, tau, a, eta = sticky_phase(a, eta, t_limit, law, X, P, Q, False)
             if status != FOUND:
-                stop = STOP_TIME if status == HORIZON else STOP_FAILED
+                stop = (STOP_STICKY_FOREVER if status == NEVER else STOP_TIME if status == HORIZON
+                        else STOP_SLOW_CROSSING if status == SLOW_CROSSING else STOP_FAILED)
                 break
-        x0 = 0.0
-        kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)  # the shared rule
-        sticky = kind == STICKY_START
+            kind = DETACH
+            x0 = 0.0
+            u = 0.0
+            sticky = False
+        else:
+            status = HANDOVER
+            if x0 == 0.0 and u > 0.0:
+                status, tau, v, scale, eta_t, xid_t, acc, jerk = short_flight(u, a, eta, law, X, P, Q)
+                if status == FOUND and tau > t_limit:
+                    stop = STOP_TIME
+                    break
+            if status == HANDOVER:
+                status, tau, v, scale, eta_t, xid_t, acc, jerk = first_contact(x0, u, a, eta, t_limit, law, X, P, Q)
+                if status == SLOW_CROSSING:
+                    stop = STOP_SLOW_CROSSING
+                    break
+                if status != FOUND and status != AT_REST:
+                    stop = STOP_TIME if status == HORIZON else STOP_FAILED
+                    break
+            if status == AT_REST:
+                # after a tangential detach the mass stays (power_sticky docstring): a sticky start
+                kind, tau = STICKY_START, 0.0
+            else:
+                x0 = 0.0
+                kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)  # the shared rule
+            sticky = kind == STICKY_START
         t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
         _record(n, t_hi + t_lo, tau, kind, u, a, eta, law,
                 out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
         n += 1
-        if sticky:
-            stop = STOP_STICKY_UNSUPPORTED
-            break
         if out_e[n - 1] < e_stop:
             stop = STOP_ENERGY
             break

@@ -90,6 +90,7 @@ from .power_series import (
     curvature,
     displacement,
     powers_at,
+    restoring_excess,
     tail_bounds,
     taylor_coefficients,
 )
@@ -104,7 +105,7 @@ TOL_LONG = 2.0**-64
 MAX_EVALS = 400_000
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
-#: status: the flight starts at rest on the floor with x'' <= 0 (a sticky state).
+#: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
 AT_REST = 5
 #: status: a crossing of xi = 0 too slow for the window to be exact to rounding, or a window that
 #: may contain the floor contact (see module docstring).
@@ -147,6 +148,63 @@ def _curvature_bound_near(w0, v, p0, q0, law):
     if not be < 0.5:
         return curvature_bound(Es, law)
     return (law[L_GAMMA] + ap2 * Es / w0 + 2.0 * law[L_MU] * math.sqrt(2.0 * Es) * q0 / (1.0 - be)) * MARGIN
+
+
+@njit(cache=True)
+def floor_force(v, eta, law):
+    """(F, F', noise of F, noise of F') for a state at rest on the floor (x = x' = 0).
+
+    F = f(xi) + 2 mu xi' |xi|^b - gamma is the force of spring and gravity on the lower mass
+    (eq. ``force-on-the-floor`` for a = b = 0, rho = 1), i.e. x'' of the free motion there,
+    and F' = x''' = d/dt (f(xi) + 2 mu xi' |xi|^b), the same for the free and the sticky
+    motion at F = 0 (both have xi'' = -gamma there; :mod:`bounce.power_sticky`):
+
+        F' = f'(xi) xi' + 2 mu b |xi|^(b-1) sign(xi) xi'^2 + 2 mu |xi|^b xi'',  xi'' = -gamma - F/2.
+
+    gamma + f is formed without cancellation (:func:`bounce.power_series.restoring_excess`).
+    The noises are 8 eps times the magnitudes of the terms (gamma + f, 2 gamma, the damping;
+    for a = b = 0, rho = 1 those of :func:`bounce.events._at_rest_is_sticky`):
+    within them F, F' count as zero (approximation at the rounding level, as in
+    :func:`bounce.events._at_rest_is_sticky`).  At xi = 0 with b > 0, F = -gamma: F' is not
+    needed there and its singular term is dropped.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    xi = law[L_XI_EQ] + eta
+    w = abs(xi)
+    p0, q0 = powers_at(w, law)
+    excess = restoring_excess(eta, p0, law)  # gamma + f(xi)
+    damp = 2.0 * mu * v * q0
+    F = (excess - 2.0 * gamma) + damp
+    noise_F = 8.0 * EPS * (abs(excess) + 2.0 * gamma + abs(damp))
+    if w > 0.0:
+        fp = law[L_AP1] * rho * p0 / w
+        bend = 2.0 * mu * law[L_B] * q0 / w * v * v * (1.0 if xi > 0.0 else -1.0)
+    else:
+        fp = rho if law[L_ANALYTIC_A] == 1.0 else 0.0
+        bend = 0.0
+    xidd = -gamma - 0.5 * F
+    Fp = fp * v + bend + 2.0 * mu * q0 * xidd
+    noise_Fp = 8.0 * EPS * (abs(fp * v) + abs(bend) + 2.0 * mu * q0 * (gamma + 0.5 * abs(F)))
+    return F, Fp, noise_F, noise_Fp
+
+
+@njit(cache=True)
+def at_rest_is_sticky(v, eta, law):
+    """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0 and F' <= 0)?
+
+    The decision of :func:`bounce.events._at_rest_is_sticky` for the power law (eq.
+    ``cond_di_distacco``: it leaves only if F > 0, or F = 0 and F' > 0), within the noises of
+    :func:`floor_force`.  The flight's lift-off and the sticky phase's start both use it, so
+    a detach is never followed by an immediate sticky start or the reverse.
+    """
+    F, Fp, noise_F, noise_Fp = floor_force(v, eta, law)
+    if F > noise_F:
+        return False
+    if F < -noise_F:
+        return True
+    return Fp <= noise_Fp
 
 
 @njit(cache=True)
@@ -200,41 +258,55 @@ def _minimum(s0, s1, x, xl, u, ul, gamma, H, K, X):
 
 
 @njit(cache=True)
-def _liftoff(acc, h, radius, Rz, Rp, K, X):
-    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc > 0.
+def _liftoff(acc, jerk, h, radius, Rz, Rp, K, X):
+    """S > 0 with x > 0 on (0, S] for a step starting at x = x' = 0 with x''(0) = acc >= 0 and
+    x'''(0) = jerk, acc > 0 or jerk > 0 (acc = 0, jerk > 0: a detach, eq. ``cond_di_distacco``).
 
-    x(s) >= s^2 (acc/2 - sum_{k>=3} |X_k| S^(k-2)) - tail(S) on (0, S]; S halves until positive.
+    With X_k in units of the radius, x(s) >= s^2 (acc/2 + jerk s/6 - R(s)) where
+    R(s) = sum_{k>=4} |X_k| s^(k-2) / radius^k + tail(s)/s^2 grows at least like s^2, so the
+    concave bracket is positive on (0, S] once it is at S (jerk > 0); for jerk <= 0 the
+    X_3 term joins R: acc/2 > sum_{k>=3} |X_k| S^(k-2) / radius^k + tail(S)/S^2.
+    S halves until the bracket is positive; 0 if neither acc > 0 nor jerk > 0.
     """
+    if not (acc > 0.0 or jerk > 0.0):
+        return 0.0
+    first = 4 if jerk > 0.0 else 3
     S = h
     for _ in range(400):
         poly = 0.0
-        for k in range(K, 2, -1):
+        for k in range(K, first - 1, -1):
             poly = poly * (S / radius) + abs(X[k])
-        tail = tail_bounds(S / radius, K, Rz, Rp)[0]
-        if 0.5 * acc > poly * S / radius**3 + tail / (S * S):
+        poly *= (S / radius) ** first / (S * S)
+        tail = tail_bounds(S / radius, K, Rz, Rp)[0] / (S * S)
+        if 0.5 * acc + (jerk * S / 6.0 if jerk > 0.0 else 0.0) > poly + tail:
             return S
         S *= 0.5
     return 0.0
 
 
 @njit(cache=True)
-def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
+def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     """First time tau in (0, t_limit] with x(tau) = 0 for the flight from (x, u, v, eta).
 
     Requires x > 0 or u > 0 or (x = u = 0 with x'' > 0).  Returns
     ``(status, tau, x'(tau), scale, eta(tau), xi'(tau), x''(tau), x'''(tau))``:
     status FOUND (polished root, or a minimum within rounding of the floor),
-    HORIZON (no contact up to t_limit), AT_REST (x = u = 0 and x'' <= 0: the mass
-    cannot lift off) or FAILED (evaluation cap, or a floor contact inside a crossing
-    window); the other fields are meaningful at FOUND only.  The state is carried
+    HORIZON (no contact up to t_limit: then the fields are (HORIZON, t_limit,
+    x'(t_limit), x(t_limit), eta(t_limit), xi'(t_limit), 0, 0), the state there for the
+    dense output of :mod:`bounce.sampling`), AT_REST (x = u = 0 and the mass stays,
+    :func:`at_rest_is_sticky`; then the last two fields are F and F') or FAILED
+    (evaluation cap, or a floor contact inside a crossing window).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
     that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
+    ``lifting``: the caller knows that a start at rest lifts off (dense output of a recorded
+    flight; F, F' within rounding of the at-rest boundary are then taken as a lift-off).
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]
     mu = law[L_MU]
     xi_eq = law[L_XI_EQ]
     singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
+    start = (x, u, v, eta)
     K = DEGREE_LONG
     t_hi, t_lo = 0.0, 0.0
     xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
@@ -254,7 +326,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
             root = math.sqrt(u * u + 2.0 * gamma * x)
             s = (u + root) / gamma if u >= 0.0 else 2.0 * x / (root - u)
             if t + s > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+                s = t_limit - t
+                return HORIZON, t_limit, u - gamma * s, x + (u * s - 0.5 * gamma * s * s), eta + el, v + vl, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         delta = crossing_halfwidth(v, Es, law) if singular else 0.0
@@ -280,8 +353,15 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 return SLOW_CROSSING, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             if not (x == 0.0 and u == 0.0) and safe_step(x + xl, u + ul, B) <= T:
                 return SLOW_CROSSING, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # the floor may be reached inside
-            if t + T > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            if t + T > t_limit:  # the state part-way through the window (for dense output)
+                T = t_limit - t
+                if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
+                    dv = v * math.expm1(-2.0 * mu * T)
+                    d = -dv / (2.0 * mu)
+                else:
+                    d, dv = v * T, 0.0
+                xs = (x + (u * T - 0.5 * gamma * T * T) + (v * T - d)) + (xl + ul * T)
+                return HORIZON, t_limit, (u - gamma * T - dv) + ul, xs, eta + (d + (el + vl * T)), (v + dv) + vl, 0.0, 0.0
             # x = psi - xi: psi moves by (u + v) T - gamma T^2/2, xi by d
             x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
             u, ul = compensated_add(u, ul, -gamma * T - dv)
@@ -306,14 +386,15 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
         last = t + h >= t_limit
         if last:
             h = t_limit - t
-        taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, radius, K, X, P, Q)
+        taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, radius, K, X, P, Q)
         s = 0.0
         xs, vs = x + xl, u + ul
         if x == 0.0 and u == 0.0:
-            acc = -gamma - 2.0 * X[2] / (radius * radius)
-            if not acc > 0.0:
-                return AT_REST, 0.0, 0.0, 0.0, eta, v, acc, -6.0 * X[3] / radius**3
-            s = _liftoff(acc, h, radius, Rz, Rp, K, X)
+            # at rest on the floor: x'' = F, x''' = F' (floor_force); F within its noise is 0
+            F, Fp, noise_F, _ = floor_force(v, eta, law)
+            if not lifting and at_rest_is_sticky(v, eta, law):
+                return AT_REST, 0.0, 0.0, 0.0, eta, v, F, Fp
+            s = _liftoff(F if F > noise_F else 0.0, Fp, h, radius, Rz, Rp, K, X)
             if s == 0.0:
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
@@ -331,16 +412,16 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
                 if vs < 0.0:  # Newton polish, re-evaluated at the polished time
                     s = s - xs / vs
                     xs, vs, scale, D, Dp = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
-                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X)
+                return _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, radius, K, X, start)
             if v_prev < 0.0 <= vs:
                 sm = _minimum(s_prev, s, x, xl, u, ul, gamma, radius, K, X)
                 xm, vm, sc_m, Dm, Dpm = _evaluate(sm, x, xl, u, ul, gamma, radius, K, X)
                 if xm <= 4.0 * EPS * sc_m:
-                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X)
+                    return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X, start)
             if at_end:
                 break
-        if last:
-            return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        if last:  # xs, vs, D, Dp are at s = h: the state at t_limit (for dense output)
+            return HORIZON, t_limit, vs, xs, eta + ((v * h + D) + (el + vl * h)), (v + Dp) + vl, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
         u, ul = compensated_add(u, ul, -gamma * h - Dp)
         eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
@@ -350,11 +431,22 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q):
 
 
 @njit(cache=True)
-def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X):
-    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''')."""
+def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X, start):
+    """FOUND at time s of the current step: (status, tau, x', scale, eta, xi', x'', x''').
+
+    The rounding scale of x at the contact is the larger of the step's and the flight's,
+    x0 + |u0| tau + gamma tau^2/2 + |xi(tau) - xi0 - v0 tau| from the flight's start
+    ``start`` = (x0, u0, v0, eta0): the terms of eq. (P) over the whole flight, like the linear
+    flight's scale (:func:`bounce.flight.gap`), so that the contact classifier
+    (:func:`bounce.events.contact`) sees the uncertainty the start state's own rounding leaves.
+    """
     D2, D3 = curvature(s, H, K, X)
     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
-    return FOUND, t_hi + t_lo, vs, scale, eta + ((v * s + D) + (el + vl * s)), (v + Dp) + vl, -gamma - D2, -D3
+    tau = t_hi + t_lo
+    eta_t = eta + ((v * s + D) + (el + vl * s))
+    x0, u0, v0, eta0 = start
+    scale = max(scale, x0 + abs(u0) * tau + 0.5 * gamma * tau * tau + abs((eta_t - eta0) - v0 * tau))
+    return FOUND, tau, vs, scale, eta_t, (v + Dp) + vl, -gamma - D2, -D3
 
 
 @njit(cache=True)
@@ -397,7 +489,7 @@ def short_flight(u, v, eta, law, X, P, Q):
         tk *= theta
         if K > DEGREE_SHORT:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    taylor_coefficients(xi0, w0, v, p0, q0, 0.0, rho, mu, law, 1.0, K, X, P, Q)
+    taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
     B = _curvature_bound_near(w0, v, p0, q0, law)
     A0 = -gamma - 2.0 * X[2]
     disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
@@ -439,4 +531,4 @@ def short_flight(u, v, eta, law, X, P, Q):
     if vs < 0.0:
         s -= xs / vs
         xs, vs, scale, D, Dp = _evaluate(s, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
-    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X)
+    return _contact(0.0, 0.0, s, vs, scale, eta, 0.0, v, 0.0, gamma, D, Dp, 1.0, K, X, (0.0, u, v, eta))

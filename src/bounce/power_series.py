@@ -1,9 +1,13 @@
 """Taylor series of the power-law spring along a flight, with a rigorous tail bound.
 
 The spring obeys (paper, eq. ``eq-motion-nonlin-psi-xi``; the sticky phase of
-:mod:`bounce.power_events` has the same form with a constant c0 and halved r, m)
+:mod:`bounce.power_sticky` has the same form with c0 = gamma/2 and halved r, m)
 
     xi'' = -c0 - r xi |xi|^a - 2 m xi' |xi|^b.                            (S)
+
+The constant part of the right side at the expansion point, f0 = c0 + r xi0 |xi0|^a,
+is passed in whole: in the sticky phase it is (gamma + f(xi0))/2, which vanishes at
+the equilibrium and is formed without cancellation by :func:`restoring_excess`.
 
 Coefficients.  Around a point xi0 != 0 with sign sigma, |xi| = sigma xi is analytic
 while xi keeps its sign, and with X_k = xi^(k)(t0)/k! the powers P = |xi|^(a+1),
@@ -14,7 +18,9 @@ Q = |xi|^b follow from J. C. P. Miller's recurrence for F = G^p
 
 and (S) gives, with a Cauchy sum for the product xi' Q,
 
-    (k+1)(k+2) X_{k+2} = -c0 [k = 0] - r sigma P_k - 2 m sum_{j=0..k} (j+1) X_{j+1} Q_{k-j}.
+    (k+1)(k+2) X_{k+2} = -c0 [k = 0] - r sigma P_k - 2 m sum_{j=0..k} (j+1) X_{j+1} Q_{k-j}
+
+(for k = 0 the first two terms are f0).
 
 For a = 0 (b = 0) the power is xi itself (1) and is not formed by the recurrence:
 the linear law (a = b = 0) is then analytic through xi = 0 and loses no digit to a
@@ -42,6 +48,7 @@ The coefficients themselves carry the usual relative rounding of a recurrence
 from __future__ import annotations
 
 import math
+from decimal import Decimal, localcontext
 
 import numpy as np
 from numba import njit
@@ -59,8 +66,9 @@ MARGIN = 1.0 + 1e-12
 INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
 
 # layout of the law array (see law_array)
-L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B = range(10)
-LAW_SIZE = 10
+(L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B,
+ L_EQ_RESIDUAL) = range(11)
+LAW_SIZE = 11
 
 
 def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
@@ -68,13 +76,62 @@ def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
 
     Holds rho, a + 1, b, mu, gamma, xi_eq = -(gamma/rho)^(1/(a+1)) (eq.
     ``nonlin-equilibrium-xi``), the factors (1 + DISC)^(a+1), (1 + DISC)^b of the
-    majorant, and whether the restoring (a = 0) and damping (b = 0) terms are analytic.
+    majorant, whether the restoring (a = 0) and damping (b = 0) terms are analytic, and the
+    residual gamma - rho |xi_eq|^(a+1) of the rounded xi_eq (~1 ulp of gamma; 0 for the
+    linear law), computed at 50 digits so that the force near equilibrium
+    (:func:`restoring_excess`) is that of the double xi_eq + eta, not of a rounded origin.
     """
     xi_eq = -((gamma / rho) ** (1.0 / (a + 1.0)))
+    with localcontext() as ctx:
+        ctx.prec = 50
+        w = Decimal(-xi_eq)
+        residual = float(Decimal(gamma) - Decimal(rho) * (Decimal(a + 1.0) * w.ln()).exp())
     return np.array([
         rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
-        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0,
+        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual,
     ])
+
+
+@njit(cache=True)
+def restoring_excess(eta, p0, law):
+    """gamma + f(xi) for xi = xi_eq + eta, f(xi) = rho xi |xi|^a, without cancellation.
+
+    It vanishes at the equilibrium (eq. ``nonlin-equilibrium-xi``).  For xi < 0, with
+    e = eta/|xi_eq| and rho |xi_eq|^(a+1) = gamma - res (res: L_EQ_RESIDUAL),
+    gamma + f = res - (gamma - res) expm1((a+1) log1p(-e)): a few ulps of itself.
+    For xi >= 0 (p0 = |xi|^(a+1)) the two terms add.
+    """
+    gamma = law[L_GAMMA]
+    w_eq = -law[L_XI_EQ]
+    if eta >= w_eq:
+        return gamma + law[L_RHO] * p0
+    res = law[L_EQ_RESIDUAL]
+    return res - (gamma - res) * math.expm1(law[L_AP1] * math.log1p(-eta / w_eq))
+
+
+@njit(cache=True)
+def bregman(eta, law):
+    """V(xi_eq + eta) - V(xi_eq) + gamma eta with V = rho |xi|^(a+2)/(a+2) (eq. ``nonlin-energy``).
+
+    The potential part of E - E_m, O(eta^2) and >= 0 (V convex, V'(xi_eq) = -gamma); summed
+    as gamma |xi_eq| / (a+2) * sum_{k>=2} C(a+2, k) (-e)^k, e = eta/|xi_eq|, for |e| <= 1/4
+    (no cancellation), directly otherwise.
+    """
+    gamma = law[L_GAMMA]
+    w_eq = -law[L_XI_EQ]
+    p = law[L_AP1] + 1.0
+    e = eta / w_eq
+    if abs(e) <= 0.25:
+        term = -p * e
+        g = 0.0
+        for k in range(2, 200):
+            term *= (p - k + 1.0) / k * -e
+            g += term
+            if abs(term) <= 1e-17 * abs(g) or term == 0.0:
+                break
+    else:
+        g = abs(1.0 - e) ** p - 1.0 + p * e
+    return gamma * w_eq / p * g
 
 
 @njit(cache=True)
@@ -91,14 +148,15 @@ def powers_at(w0, law):
 
 
 @njit(cache=True)
-def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
+def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     """Fill X[0..K] with H^k xi^(k)(t0)/k! for eq. (S) from xi(t0) = xi0, xi'(t0) = v0.
 
     H is the time unit of the coefficients (H = r_c keeps |X_k| <= Rz: no overflow
     when the series is taken close to xi = 0, where r_c ~ |xi0| / |v0| is tiny).
 
-    w0 = |xi0| > 0 unless the law is linear; p0, q0 from :func:`powers_at`; P, Q are
-    work arrays (length > K) for the coefficients of |xi|^(a+1) and |xi|^b.
+    w0 = |xi0| > 0 unless the law is linear; p0, q0 from :func:`powers_at`; f0 = c0 + r xi0 |xi0|^a
+    (module docstring); P, Q are work arrays (length > K) for the coefficients of |xi|^(a+1)
+    and |xi|^b.
     """
     ap1 = law[L_AP1]
     b = law[L_B]
@@ -133,10 +191,8 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, c0, r, m, law, H, K, X, P, Q):
             damp = 0.0
             for j in range(0, k + 1):
                 damp += (j + 1) * X[j + 1] * Q[k - j]
-        rhs = -(H2 * r * P[k] + 2.0 * m * H * damp)
-        if k == 0:
-            rhs -= H2 * c0
-        X[k + 2] = rhs * INV[k + 1] * INV[k + 2]
+        force = f0 if k == 0 else r * P[k]
+        X[k + 2] = -(H2 * force + 2.0 * m * H * damp) * INV[k + 1] * INV[k + 2]
 
 
 @njit(cache=True)

@@ -1,10 +1,17 @@
-"""Closed-form dense output: x(t), y(t) and velocities at any requested times.
+"""Dense output: x(t), y(t) and velocities at any requested times.
 
 Figures never need stored dense trajectories: the per-event records (time,
 kind and the state just after each event) determine the motion in between,
 a flight by eq. (F) of :mod:`bounce.flight` and a sticky phase by the sticky
-oscillator of :mod:`bounce.events`.  Samples after ``t_valid`` (the last time
-the simulation vouches for) are NaN.
+oscillator of :mod:`bounce.events` (closed forms, linear spring), or for the
+power-law spring by the Taylor-series steps of the solver itself
+(:func:`bounce.power_flight.first_contact` and :func:`bounce.power_sticky.sticky_phase`
+up to the sample time, which return the state there).  Samples after ``t_valid``
+(the last time the simulation vouches for) are NaN.
+
+Power law: the samples are taken in time order; within one phase each sample continues
+from the previous one (a new series step starts at every sample, so a sample is exact to
+rounding like the events, and a grid of n samples costs n short marches, not n^2).
 """
 
 from __future__ import annotations
@@ -15,8 +22,11 @@ import numpy as np
 from numba import njit
 
 from .events import STICKY_START
-from .flight import flight_spring, gap, oscillator_at
+from .flight import FOUND, flight_spring, gap, oscillator_at
 from .oscillator import fundamental, make_oscillator
+from .power_flight import first_contact
+from .power_series import DEGREE_LONG, law_array
+from .power_sticky import sticky_phase
 
 SQRT2 = math.sqrt(2.0)
 
@@ -56,40 +66,80 @@ def _sample(times, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0, gamma, t_va
             out_ydot[j] = vt + 2.0 * xid_t
 
 
-def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid):
+@njit(cache=True)
+def _sample_power(times, order, t_ev, kind, u_ev, a_ev, eta_ev, x0, u0, a0, eta0, t_valid, law,
+                  out_x, out_xdot, out_ydev, out_ydot):
+    X = np.empty(DEGREE_LONG + 2)
+    P = np.empty(DEGREE_LONG + 2)
+    Q = np.empty(DEGREE_LONG + 2)
+    phase = -2  # the phase the chain is in (-1: before the first event)
+    t0, x, u, a, eta, sticky = 0.0, 0.0, 0.0, 0.0, 0.0, False
+    for j in order:
+        ts = times[j]
+        if not (ts >= 0.0 and ts <= t_valid):
+            out_x[j] = np.nan
+            out_xdot[j] = np.nan
+            out_ydev[j] = np.nan
+            out_ydot[j] = np.nan
+            continue
+        i = np.searchsorted(t_ev, ts, side="right") - 1
+        if i != phase:
+            phase = i
+            if i < 0:
+                t0, x, u, a, eta, sticky = 0.0, x0, u0, a0, eta0, False
+            else:
+                t0, x, u, a, eta, sticky = t_ev[i], 0.0, u_ev[i], a_ev[i], eta_ev[i], kind[i] == STICKY_START
+        dt = ts - t0
+        if dt > 0.0:
+            if sticky:
+                _, _, a, eta = sticky_phase(a, eta, dt, law, X, P, Q, True)
+            else:
+                status, _, v1, v2, eta_t, xid_t, _, _ = first_contact(x, u, a, eta, dt, law, X, P, Q, True)
+                if status == FOUND:  # a contact within rounding before the recorded one: at the floor
+                    x, u = 0.0, v1
+                else:  # HORIZON: (x'(ts), x(ts)), not clipped (a rounding-level -1e-17 shows as such)
+                    x, u = v2, v1
+                a, eta = xid_t, eta_t
+            t0 = ts
+        out_x[j] = x
+        out_xdot[j] = u
+        out_ydev[j] = x + 2.0 * eta
+        out_ydot[j] = u + 2.0 * a
+
+
+def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid, spring=None):
     """x, xdot, y - y_eq, ydot at ``times`` from per-event records.
 
     ``initial`` is the (x, xdot, xidot, eta) state at t = 0 (a
     :class:`bounce.model.Deviations` or a 4-tuple); the event arrays are those
-    of :class:`bounce.simulate.Trajectory` (or of its netCDF dataset).
+    of :class:`bounce.simulate.Trajectory` (or of its netCDF dataset).  ``spring``: a
+    :class:`bounce.springs.power.PowerSpring` for the power law (eta = xi - xi_eq of that law;
+    its series steps), None or the linear spring for the closed forms.
     Returns a dict of float64 arrays with keys x, xdot, y_minus_yeq, ydot.
     """
     x0, u0, a0, eta0 = (initial.x, initial.xdot, initial.xidot, initial.eta) if hasattr(initial, "eta") else initial
-    params, coefs = make_oscillator(mu)
-    sparams, scoefs = make_oscillator(mu / SQRT2)
     times = np.ascontiguousarray(times, dtype=np.float64)
     out = {k: np.empty(times.shape) for k in ("x", "xdot", "y_minus_yeq", "ydot")}
-    _sample(
-        times.ravel(), np.ascontiguousarray(t_events, dtype=np.float64), np.ascontiguousarray(kind, dtype=np.int8),
-        np.ascontiguousarray(xdot, dtype=np.float64), np.ascontiguousarray(xidot, dtype=np.float64),
-        np.ascontiguousarray(eta, dtype=np.float64), float(x0), float(u0), float(a0), float(eta0),
-        float(gamma), float(t_valid), params, coefs, sparams, scoefs,
-        out["x"].ravel(), out["xdot"].ravel(), out["y_minus_yeq"].ravel(), out["ydot"].ravel(),
-    )
+    events = (np.ascontiguousarray(t_events, dtype=np.float64), np.ascontiguousarray(kind, dtype=np.int8),
+              np.ascontiguousarray(xdot, dtype=np.float64), np.ascontiguousarray(xidot, dtype=np.float64),
+              np.ascontiguousarray(eta, dtype=np.float64), float(x0), float(u0), float(a0), float(eta0))
+    outputs = (out["x"].ravel(), out["xdot"].ravel(), out["y_minus_yeq"].ravel(), out["ydot"].ravel())
+    if spring is not None and spring.name != "linear":
+        law = law_array(spring.rho, spring.a, spring.b, float(mu), float(gamma))
+        flat = times.ravel()
+        _sample_power(flat, np.argsort(flat, kind="stable"), *events, float(t_valid), law, *outputs)
+        return out
+    params, coefs = make_oscillator(mu)
+    sparams, scoefs = make_oscillator(mu / SQRT2)
+    _sample(times.ravel(), *events, float(gamma), float(t_valid), params, coefs, sparams, scoefs, *outputs)
     return out
 
 
 def sample_trajectory(traj, times):
-    """:func:`sample` for a :class:`bounce.simulate.Trajectory` of the linear spring (closed forms).
-
-    The power-law spring has no closed-form flight: its dense output is not written yet, and it is
-    refused here rather than sampled with the linear formulas.
-    """
-    if traj.params.spring.name != "linear":
-        from .model import InputError
-
-        raise InputError(f"dense sampling (--dt-sample) supports the linear spring only, got {traj.params.spring.name!r}")
+    """:func:`sample` for a :class:`bounce.simulate.Trajectory` (closed forms for the linear spring,
+    the series steps for the power law)."""
+    spring = traj.params.spring
     return sample(
         traj.params.gamma, traj.params.mu, traj.initial.deviations(traj.params), traj.t, traj.kind,
-        traj.xdot, traj.xidot, traj.eta, times, traj.t_valid,
+        traj.xdot, traj.xidot, traj.eta, times, traj.t_valid, spring=spring,
     )

@@ -119,9 +119,9 @@ def simulate(
 
     Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
     that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`); for the
-    power-law spring (``params.spring``), Taylor-series flights with rigorous tails
-    (:mod:`bounce.power_events`; its sticky phase is not integrated yet: the run stops at a sticky
-    onset with stop reason ``sticky_unsupported``).
+    power-law spring (``params.spring``), Taylor-series flights and sticky phases with rigorous
+    tails (:mod:`bounce.power_events`, :mod:`bounce.power_sticky`; one more stop reason,
+    ``slow_crossing``).
     """
     if params.spring.name in SERIES_LAWS:  # no closed form: Taylor-series flights (bounce.power_events)
         from .power_events import simulate_power
