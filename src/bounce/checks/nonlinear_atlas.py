@@ -47,7 +47,8 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     p, p_err = np.where(keep, p, np.nan), np.where(keep, p_err, np.nan)
     data = xr.Dataset(coords={"cell": ("cell", np.array(names, dtype=object), {"long_name": "(a, b, rho, gamma, mu)",
                                                                               "units": "1"}),
-                              "quantity": ds["quantity"]})
+                              "quantity": ("quantity", ds["quantity"].values, {"long_name": "fitted sequence q_n",
+                                                                                "units": "1"})})
     data["limit"] = variable(("cell", "quantity"), L, "Richardson limit L (theory 1)")
     data["limit_err"] = variable(("cell", "quantity"), err, "error of L: max(Richardson change, |L - tail fit|)")
     data["exponent"] = variable(("cell", "quantity"), p, "decay exponent of the correction (theory 1)")
@@ -103,22 +104,27 @@ def correction_decay(m, spec) -> Verdict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Each cell's L - 1 with its error bar and the tolerance band, for both limits."""
+    """Each cell's (L - 1)/error for both limits and (p - 1)/error for the decay, with the tolerance band."""
     from ..figures.common import WIDTH, plt, save
 
-    fig, axes = plt.subplots(1, 2, figsize=(WIDTH, 3.2), constrained_layout=True)
+    k = float(ds.attrs["sigmas"])
+    fig, ax = plt.subplots(figsize=(WIDTH, 3.0), constrained_layout=True)
     x = np.arange(ds.sizes["cell"])
-    for ax, q, lab in zip(axes, ("alpha", "flight"), (r"$\lim n\dot X_n\alpha - 1$", r"$\lim\dot X_n/(\gamma\tau_n) - 1$")):
-        L, e = ds["limit"].sel(quantity=q).values, ds["limit_err"].sel(quantity=q).values
-        ax.errorbar(x, L - 1.0, yerr=ds.attrs["sigmas"] * e, fmt="o", ms=2.5, lw=0.8, capsize=1.5,
-                    label=f"{ds.attrs['sigmas']:g} x error")
-        ax.axhline(0.0, color="k", lw=0.6)
-        ax.set_yscale("symlog", linthresh=1e-9)
-        ax.set_xlabel("cell (a, b, constants), in the order of the sweep")
-        ax.set_ylabel(lab)
-        ax.legend(fontsize=6)
-    fig.suptitle(f"power-law spring: fitted limits per cell of sweep alpha-atlas ({ds.attrs['events']:.3g} events)",
-                 fontsize=8)
+    series = [(ds["limit"].sel(quantity="alpha"), ds["limit_err"].sel(quantity="alpha"), 1.0, "o",
+               r"$(\lim n\dot X_n\alpha - 1)/$error"),
+              (ds["limit"].sel(quantity="flight"), ds["limit_err"].sel(quantity="flight"), 1.0, "s",
+               r"$(\lim \dot X_n/(\gamma\tau_n) - 1)/$error"),
+              (ds["exponent"].sel(quantity="alpha"), ds["exponent_err"].sel(quantity="alpha"), 1.0, "^",
+               r"(decay exponent $-1$)/error")]
+    for i, (v, e, target, marker, lab) in enumerate(series):
+        ax.plot(x + 0.15 * (i - 1), (v.values - target) / e.values, marker, ms=3.5, mfc="none", ls="none", label=lab)
+    ax.axhspan(-k, k, color="0.9", zorder=-1, label=f"tolerance: {k:g} x error")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xticks(x, [str(c) for c in ds["cell"].values], rotation=90, fontsize=4)
+    ax.set_ylabel("deviation in units of the cell's error")
+    ax.legend(fontsize=6, ncol=2)
+    fig.suptitle(f"power-law spring: fitted limits per cell of sweep alpha-atlas ({ds.attrs['events']:.3g} events; "
+                 "missing: not determined)", fontsize=8)
     save(fig, outputs)
 
 

@@ -128,7 +128,8 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
         gamma=xr.Variable(("constants",), table["gamma"], {"long_name": "gravity gamma", "units": "1"}),
         mu=xr.Variable(("constants",), table["mu"], {"long_name": "damping mu", "units": "1"}),
         quantity=xr.Variable(("quantity",), np.array(QUANTITIES, dtype=object),
-                             {"long_name": "q_n: " + "; ".join(f"{k} = {v}" for k, v in QUANTITY_LABELS.items())}),
+                             {"long_name": "q_n: " + "; ".join(f"{k} = {v}" for k, v in QUANTITY_LABELS.items()),
+                              "units": "1"}),
     )
     out.attrs.update(events=int(spec["events"]), fit_n_min=int(spec["fit_n_min"]), drop=float(spec["drop"]))
     return out
