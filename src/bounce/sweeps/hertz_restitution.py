@@ -15,6 +15,9 @@ Without gravity the spring is back at its rest length at the second impact and l
 gravity the centre of mass has fallen during the contact time T_c and the spring still moves:
 xi'/u = -gamma T_c/u after the second impact (recorded as ``residual``), which is where gravity breaks
 the single-cycle law (checked in ``bounce.checks.onefifth``; the fit of U and the exponent is there).
+Gravity must stay >= ~1e-12 for u up to 1: below, the second impact falls within rounding of the spring's
+return to rest length (xi = 0, the law's non-analytic point), and the solver stops with ``slow_crossing``
+(recorded as ``complete = 0``, never a guessed r).
 """
 
 from __future__ import annotations
