@@ -258,7 +258,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a2.set_ylim(1e-7, 3.0)
     a1.set_title(r"(a) $r(u)$; shaded: fit window ($\gamma$ smallest); $r<0$: gravity wins", fontsize=8)
     a2.set_title(r"(b) $1-r$: slope $1/5$ (single) against 1 (repeated)", fontsize=8)
-    a1.legend(fontsize=5, loc="lower left")
+    a2.legend(fontsize=5, loc="lower right")
     fig.suptitle(rf"eq. onefifth-rest-coeff: Hertz spring $a=b=1/2$, $\rho={at['spring_rho']:g}$, $\mu={at['mu']:g}$",
                  fontsize=9)
     save(fig, outputs)
