@@ -164,10 +164,11 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set_xticks(np.arange(a.size) + 0.5, [f"{v:g}" for v in a], fontsize=6)
             ax.set_yticks(np.arange(b.size) + 0.5, [f"{v:g}" for v in b], fontsize=6)
             ax.set_xlabel("$a$", fontsize=7)
-            ax.set_ylabel("$b$", fontsize=7)
-            lab = r"$n\dot X_n\alpha$" if q == "alpha" else r"$\dot X_n/(\gamma\tau_n)$"
-            ax.set_title(rf"$|L-1|$, $L=\lim$ {lab}; $\rho={float(ds['rho'][c]):g}$, $\gamma={float(ds['gamma'][c]):g}$, "
-                         rf"$\mu={float(ds['mu'][c]):g}$", fontsize=6)
+            lab = r"$\lim n\dot X_n\alpha$" if q == "alpha" else r"$\lim \dot X_n/(\gamma\tau_n)$"
+            ax.set_ylabel(f"{lab}\n$b$" if c == 0 else "$b$", fontsize=7)
+            if j == 0:
+                ax.set_title(rf"$\rho={float(ds['rho'][c]):g}$, $\gamma={float(ds['gamma'][c]):g}$, "
+                             rf"$\mu={float(ds['mu'][c]):g}$", fontsize=7)
             ax.grid(False)
     fig.colorbar(mesh, ax=axes, shrink=0.8, label=r"$|L-1|$ (Richardson)")
     fig.suptitle(f"power-law spring: the Discussion's limits over (a, b), {ds.attrs['events']:.3g} events per cell "
