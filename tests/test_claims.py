@@ -68,6 +68,8 @@ OVERRIDES = {
     "algebra": {},
     "sticky-events": {"n_alpha": 30},
     "appendix": {"giorgio2_iterations": 20000, "giorgio_iterations": 100000},
+    "onefifth-rest-coeff": {},
+    "nonlinear-atlas": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -99,7 +101,30 @@ def _synthetic_sticky_inputs(p_rms: float) -> list:
     return [conv, inf]
 
 
+@functools.cache
+def sweep_dataset(name: str) -> xr.Dataset:
+    """A small gathered sweep (the check's input ``sweep-<name>``)."""
+    import copy
+
+    from bounce.config import validated
+    from bounce.sweeps import registry as sweeps
+    from bounce.sweeps.base import gather, run_shard
+
+    small = {"hertz-restitution": {"shards": 1, "u": {"min": 1e-10, "max": 1.0, "n": 16},
+                                   "gamma": [1e-12, 1e-8, 1e-4]},
+             "alpha-atlas": {"shards": 1, "a": [0.0, 1.0], "b": [0.5], "events": 30000,
+                             "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}]}}[name]
+    cfg = copy.deepcopy(yaml.safe_load((ROOT / "config" / "config.yaml").read_text()))
+    cfg["sweeps"][name] = small
+    sp = validated(cfg)["sweeps"][name]
+    return gather(sweeps()[name], sp, [run_shard(sweeps()[name], sp, 0, progress=False)])
+
+
 def inputs_for(name: str) -> list:
+    if name == "onefifth-rest-coeff":
+        return [sweep_dataset("hertz-restitution"), scenes()["hertz"]]
+    if name == "nonlinear-atlas":
+        return [sweep_dataset("alpha-atlas")]
     s = scenes()
     return {"main-theorem": [s["ud"], s["od"]], "static-equilibrium": [s["ud"], s["od"], s["rest"]],
             "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
@@ -541,3 +566,39 @@ def test_section_5_rows_and_min_energy_above_equilibrium():
     # the verdict can come out differently: on a grid that does not increase, E_min - E_m is not decreasing
     bad = sl.verdicts(None, spec("sticky-lemmas", emin_mu=[0.0, 0.0]), only="min-energy-above-equilibrium")[0]
     assert bad.verdict == NOT_REPRODUCED
+
+
+# --------------------------------------------------------------------------- the 1/5 law and the alpha atlas
+
+def _onefifth_rows(sw) -> list:
+    group = registry()["onefifth-rest-coeff"]
+    return group.verdicts(group.measure(spec("onefifth-rest-coeff"), [sw, scenes()["hertz"]]), spec("onefifth-rest-coeff"))
+
+
+def test_onefifth_claims_flip_for_another_law():
+    """Single impacts doctored to a 1/4 law (1 - r times u^0.05) flip the exponent claim; to 1.1 (1 - r) (the same
+    power, U / 1.1^5) flip U-first-order and not the exponent; the repeated impacts are untouched."""
+    sw = sweep_dataset("hertz-restitution")
+    quarter = sw.copy(deep=True)
+    quarter["r"] = 1.0 - (1.0 - sw["r"]) * sw["arrival"] ** 0.05
+    rows = _onefifth_rows(quarter)
+    assert row(rows, "onefifth-rest-coeff/exponent").verdict == NOT_REPRODUCED
+    assert row(rows, "onefifth-rest-coeff/repeated-impacts").verdict == REPRODUCED
+    lossier = sw.copy(deep=True)
+    lossier["r"] = 1.0 - 1.1 * (1.0 - sw["r"])
+    rows = _onefifth_rows(lossier)
+    assert row(rows, "onefifth-rest-coeff/U-first-order").verdict == NOT_REPRODUCED
+    assert row(rows, "onefifth-rest-coeff/exponent").verdict == REPRODUCED
+
+
+def test_nonlinear_atlas_flips_when_a_limit_is_off():
+    """One cell's limit moved by 1e-3 in both estimates (a sequence converging to 1.001: far outside its error)
+    flips alpha-limit and names that cell."""
+    ds = sweep_dataset("alpha-atlas").copy(deep=True)
+    ds["limit"].values[0, 0, 0, 0] += 1e-3
+    ds["tail_limit"].values[0, 0, 0, 0] += 1e-3
+    group = registry()["nonlinear-atlas"]
+    rows = group.verdicts(group.measure(spec("nonlinear-atlas"), [ds]), spec("nonlinear-atlas"))
+    bad = row(rows, "nonlinear-atlas/alpha-limit")
+    assert bad.verdict == NOT_REPRODUCED and "outside: (a=0, b=0.5" in bad.measured
+    assert row(rows, "nonlinear-atlas/flight-law").verdict == REPRODUCED

@@ -88,6 +88,8 @@ def test_scene_below_the_floor_is_refused_by_the_model():
     ("figures.rest-coeff.scene", "nosuch", "no scene named 'nosuch'"),
     ("methods.work_precision.scene", "nosuch", "no scene in methods.scenes named 'nosuch'"),
     ("scenes.sticky-convergence", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
+    ("scenes.sweep-alpha-atlas", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
+    ("checks.nonlinear-atlas.inputs", ["sweep-no-such-sweep"], "no dataset named 'sweep-no-such-sweep'"),
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):

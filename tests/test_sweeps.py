@@ -39,6 +39,11 @@ ATLAS = _validated("asymptotic-atlas", {
 BAND = _validated("our-r-band", {
     "shards": 1, "mu": {"min": 0.01, "max": 0.1, "n": 2}, "u_over_uc": {"min": 0.1, "max": 30.0, "n": 8},
     "gamma": 1e-5, "psi0": 0.25, "events": 5000, "batch": 1})
+HERTZ = _validated("hertz-restitution", {
+    "shards": 1, "u": {"min": 1e-7, "max": 1e-2, "n": 6}, "gamma": [1e-12, 1e-6], "batch": 3})
+ALPHA = _validated("alpha-atlas", {
+    "shards": 1, "a": [0.0, 0.5], "b": [0.5], "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}],
+    "events": 30000, "batch": 1})
 
 
 def _ci_spec(name: str) -> dict:
@@ -73,7 +78,8 @@ def _gathered(name, spec, shards, workers):
     return gather(sweep, spec, parts[::-1])  # any order
 
 
-@pytest.mark.parametrize("name, spec", [("contact-monte-carlo", MC), ("asymptotic-atlas", ATLAS), ("our-r-band", BAND)])
+@pytest.mark.parametrize("name, spec", [("contact-monte-carlo", MC), ("asymptotic-atlas", ATLAS), ("our-r-band", BAND),
+                                        ("hertz-restitution", HERTZ), ("alpha-atlas", ALPHA)])
 def test_gathered_dataset_does_not_depend_on_shards_or_workers(name, spec):
     one = _gathered(name, spec, shards=1, workers=1)
     many = _gathered(name, spec, shards=2, workers=2)
@@ -131,7 +137,32 @@ def test_our_r_band_is_a_band_around_u_c():
     assert np.all(ds["bounces"].values.sum(axis=1) > 0) and np.all(ds["double_bounces"].values > 0)
 
 
-@pytest.mark.parametrize("name", ["contact-monte-carlo", "asymptotic-atlas", "our-r-band"])
+def test_hertz_single_impact_follows_the_first_order_cycle_loss_without_gravity():
+    """Gravity-free row: 1 - r -> theory.nonlin_cycle_loss as u -> 0, with a relative gap O(1 - r) (the next order
+    of eq. onefifth-rest-coeff); with gravity the spring is left moving at xi'/u = -gamma T_c/u exactly
+    (the centre of mass falls for T_c while the spring swings back to rest length)."""
+    ds = _gathered("hertz-restitution", HERTZ, shards=1, workers=1)
+    assert ds["r"].dims == ("u", "gamma") and np.all(ds["complete"].values == 1)
+    free = ds.sel(gamma=1e-12)
+    loss, first = 1.0 - free["r"].values, free["loss_first_order"].values
+    gap = np.abs(loss / first - 1.0)
+    assert np.all(gap <= loss) and np.all(np.diff(gap) > 0)  # O(1 - r), shrinking as u -> 0
+    gravity = (ds["gamma"] * ds["contact_time"] / ds["arrival"]).transpose("u", "gamma")
+    np.testing.assert_allclose(-ds["residual"].values, gravity.values, rtol=1e-6)
+
+
+def test_alpha_atlas_limits_are_one_in_every_cell():
+    ds = _gathered("alpha-atlas", ALPHA, shards=1, workers=1)
+    assert ds["limit"].dims == ("a", "b", "constants", "quantity") and ds["limit"].shape == (2, 1, 1, 2)
+    assert np.all(ds["complete"].values == 1)
+    L, err = ds["limit"].values, np.maximum(ds["limit_err"].values, np.abs(ds["limit"] - ds["tail_limit"]).values)
+    assert np.all(np.isfinite(L)) and np.all(err < 1e-3)
+    assert np.all(np.abs(L - 1.0) <= 3.0 * err)  # the Discussion: alpha_n -> alpha; Xdot_n/tau_n -> gamma
+    assert np.all(np.abs(ds["exponent"].values - 1.0) < 0.3)  # Lemma Giorgio's: corrections ~ ln n/n
+
+
+@pytest.mark.parametrize("name", ["contact-monte-carlo", "asymptotic-atlas", "our-r-band", "hertz-restitution",
+                                  "alpha-atlas"])
 def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     import json
 
@@ -160,6 +191,9 @@ def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     (lambda s: s["contact-monte-carlo"].update(n_samples=2.5), "2.5"),
     (lambda s: s.update(unknown_sweep={}), "unknown_sweep"),
     (lambda s: s["our-r-band"]["mu"].update(max=1.5), "1.5"),
+    (lambda s: s["hertz-restitution"].update(gamma=[0.6]), "0.6"),
+    (lambda s: s["alpha-atlas"]["constants"][0].update(rho=0.0), "0.0"),
+    (lambda s: s["alpha-atlas"].update(a=[-1.0]), "-1.0"),
 ])
 def test_schema_rejects_bad_sweep_settings(edit, key):
     import jsonschema

@@ -338,3 +338,20 @@ def _check_nonlin_energy_rate(rho, a, b):
         rate = theory.nonlin_energy_rate(float(xi), float(xid), mu, b)
         assert rate < 0 and abs(float(fd) / rate - 1) < 1e-9
         assert abs(float(fd) / (rate / 2) - 1) > 0.5  # the printed -mu xi'^2 |xi|^b is off by a factor 2
+
+
+def test_nonlinear_cycle_loss_reduces_to_the_linear_law_and_gives_the_one_fifth_law():
+    """theory.nonlin_cycle_loss: a = b = 0, rho = 1 gives mu pi for every u (the first order of
+    exp(-mu T_xi), eq. rest-coefficient-function-of-mu); Hertz gives (u/U)^(1/5) with U = theory.onefifth_U,
+    and U scales as rho^3 mu^-5 (the scaling of the single cycle)."""
+    import math
+
+    import numpy as np
+
+    from bounce import theory
+
+    u = np.geomspace(1e-8, 1.0, 9)
+    np.testing.assert_allclose(theory.nonlin_cycle_loss(u, 0.01, 1.0, 0.0, 0.0), 0.01 * math.pi, rtol=1e-14)
+    U = theory.onefifth_U(0.3, 2.0)
+    np.testing.assert_allclose(theory.nonlin_cycle_loss(u, 0.3, 2.0, 0.5, 0.5), (u / U) ** 0.2, rtol=1e-13)
+    assert math.isclose(theory.onefifth_U(0.15, 4.0) / U, 2.0**3 * 2.0**5, rel_tol=1e-12)

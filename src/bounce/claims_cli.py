@@ -64,7 +64,12 @@ def load_config(paths: list[str], schema_path: str) -> dict:
 
 def dataset_paths(name: str, config: dict, data_dir: str) -> list[Path]:
     """Files of one declared input: ``sticky-runs`` is the eps = 0 run and the eps_convergence runs of
-    config ``sticky`` (as workflow/rules/checks.smk), any other name results/data/<name>.nc."""
+    config ``sticky`` (as workflow/rules/checks.smk), ``sweep-<name>`` the gathered sweep results/sweeps/<name>.nc
+    (next to the data directory), any other name results/data/<name>.nc."""
+    from .config import SWEEP_INPUT_PREFIX
+
+    if name.startswith(SWEEP_INPUT_PREFIX):
+        return [Path(data_dir).parent / "sweeps" / f"{name[len(SWEEP_INPUT_PREFIX):]}.nc"]
     if name == "sticky-runs":
         eps = [0.0] + [float(e) for e in config["sticky"]["eps_convergence"] if float(e) != 0.0]
         return [Path(data_dir) / "sticky" / f"eps{e:g}.nc" for e in eps]

@@ -267,3 +267,61 @@ def fit_limit(n, t, q, mu, fit: dict) -> dict:
     pv = [abs(v - p) for v in pv if math.isfinite(v)]
     out.update(exponent=p, exponent_err=max(pv) if pv else math.nan)
     return out
+
+
+# --------------------------------------------------------------------------- limits of the map eq. mappa (Richardson)
+
+def richardson_ln(n: np.ndarray, q: np.ndarray, n_top: float | None = None) -> tuple[float, float]:
+    """Richardson extrapolation of q_n = L + (c ln n + d)/n + O(ln^2 n/n^2) (Lemma Giorgio's expansion of the map
+    eq. mappa) from q at m, 2m, 4m with 4m = n_top (default: the last n): R = 4 q_4m - 4 q_2m + q_m cancels the
+    ln n/n and 1/n terms exactly (one ratio-2 step leaves c ln 2/n, a second removes it).
+
+    q at the three points is linear interpolation in ln n (thinned records; the interpolation error,
+    ~(dq/d ln n) (delta ln n)^2/8, is far below the remainder for log-spaced samples of ~1e3 per decade).
+    Error = |R(n_top) - R(n_top/2)|: the change of the extrapolation when every point moves by a factor 2,
+    which bounds the O(ln^2 n/n^2) remainder (it halves roughly 4x per step); nan if n does not reach n_top/8."""
+    top = float(n[-1]) if n_top is None else float(n_top)
+
+    def at(m):
+        if m / 4.0 < n[0]:
+            return math.nan
+        lq = np.interp(np.log([m / 4.0, m / 2.0, m]), np.log(n), q)
+        return float(4.0 * lq[2] - 4.0 * lq[1] + lq[0])
+
+    r1, r0 = at(top), at(top / 2.0)
+    return r1, abs(r1 - r0)
+
+
+def correction_decay(n: np.ndarray, q: np.ndarray, extra: np.ndarray | None = None) -> tuple[float, float, float]:
+    """Decay exponent p of the correction in q_n = L + n^-p (c ln n + d) (Lemma Giorgio's: p = 1), by a profile
+    least-squares fit over p in [0.25, 4] (scan, then bounded refinement); ``extra``: further known columns (rows
+    aligned with n), e.g. the spring's relaxation (:func:`spring_columns`), fitted along.  Returns (p, its error, L): the error is
+    the larger change of p when the window starts at its geometric middle or ends at the geometric middle of its
+    upper half (a remainder of the next order moves p; a pure law does not)."""
+    def profile(sel):
+        nn, qq = n[sel], q[sel]
+        more = [] if extra is None else list(np.asarray(extra)[sel].T)
+        if nn.size < 10 + len(more):
+            return math.nan, math.nan
+
+        def fit(p):
+            a = np.column_stack([np.ones_like(nn), nn**-p * np.log(nn), nn**-p] + more)
+            return scaled_lstsq(a, qq)
+
+        def rms(p):
+            return float(np.sqrt(np.mean(fit(p)[1] ** 2)))
+
+        grid = np.geomspace(0.25, 4.0, 81)
+        vals = [rms(p) for p in grid]
+        i = int(np.argmin(vals))
+        res = minimize_scalar(rms, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]), method="bounded",
+                              options={"xatol": 1e-8})
+        p = float(res.x) if res.fun <= vals[i] else float(grid[i])
+        return p, float(fit(p)[0][0])
+
+    lo, hi = float(n[0]), float(n[-1])
+    p, L = profile(np.ones(n.size, dtype=bool))
+    mid = math.sqrt(lo * hi)
+    variants = [profile(n >= mid)[0], profile(n <= math.sqrt(mid * hi))[0]]
+    err = max((abs(v - p) for v in variants if math.isfinite(v)), default=math.nan)
+    return p, err, L

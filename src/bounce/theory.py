@@ -342,6 +342,45 @@ def nonlin_alpha_limit(gamma: float, mu: float, rho: float, a: float, b: float) 
     return mu / (3.0 * gamma) * (gamma / rho) ** (b / (a + 1.0))
 
 
+def nonlin_sticky_scaling(gamma: float, mu: float, rho: float, a: float, b: float) -> tuple[float, float]:
+    """(mu_eff, c) such that the power-law spring's relaxation near equilibrium is eq. ``y-eq-sticky`` in the time
+    c t with damping mu_eff (beyond the paper; :func:`sticky_modes` then applies).
+
+    The Discussion's sticky equation (derived in :mod:`bounce.power_events`), xi'' = -(gamma + f(xi) + 2 mu xi'
+    |xi|^b)/2, linearised at xi_eq (f(xi_eq) = -gamma, f' = rho (a+1) |xi_eq|^a) is d'' + m d' + k d = 0 with
+    m = mu |xi_eq|^b, k = rho (a+1) |xi_eq|^a/2; with c = sqrt(2k) it becomes w'' + (m/c) w' + w/2 = 0.  Along
+    the asymptotic map t_n ~ ln(n)/(alpha gamma), so a mode e^{-lam c t} is a correction n^(-lam c/(alpha gamma))
+    (oscillatory: n^(-3/2), as for the linear spring).  Linear law (rho = 1, a = b = 0): (mu, 1)."""
+    w = (gamma / rho) ** (1.0 / (a + 1.0))  # |xi_eq|
+    c = math.sqrt(rho * (a + 1.0) * w**a)
+    return mu * w**b / c, c
+
+
+def nonlin_cycle_loss(u, mu: float, rho: float, a: float, b: float):
+    """1 - r to first order in mu for one compression-expansion cycle of the power-law spring hit at speed u
+    from rest at its rest length, without gravity (the Discussion's justification of eq. ``onefifth-rest-coeff``).
+
+    Undamped, xi' = -u sqrt(1 - (|xi|/A)^(a+2)) with amplitude A = ((a+2) u^2/(2 rho))^(1/(a+2)); the
+    dissipation 2 mu xi'^2 |xi|^b (:func:`nonlin_energy_rate`) over the cycle (two quarter swings) is
+    Delta E = 4 mu u A^(b+1) I with I = int_0^1 z^b sqrt(1 - z^(a+2)) dz = B((b+1)/(a+2), 3/2)/(a+2), and
+    r = sqrt(1 - 2 Delta E/u^2) = 1 - Delta E/u^2 + O(mu^2):  1 - r = 4 mu I A^(b+1)/u ~ u^(2(b+1)/(a+2) - 1).
+    Hertz (a = b = 1/2): (u/U)^(1/5) with U = (4 rho/5)^3/(4 mu I)^5 (:func:`onefifth_U`); linear
+    (a = b = 0, rho = 1): mu pi, the first order of eq. ``rest-coefficient-function-of-mu``.  By scaling, r
+    depends on mu u^((2b - a)/(a+2)) rho^(-(b+1)/(a+2)) alone, so this is the exact leading term as u -> 0
+    (for 2b > a) and the relative error is O(1 - r)."""
+    from scipy.special import beta
+
+    integral = beta((b + 1.0) / (a + 2.0), 1.5) / (a + 2.0)
+    amplitude = ((a + 2.0) * np.asarray(u, dtype=float) ** 2 / (2.0 * rho)) ** (1.0 / (a + 2.0))
+    return 4.0 * mu * integral * amplitude ** (b + 1.0) / np.asarray(u, dtype=float)
+
+
+def onefifth_U(mu: float, rho: float) -> float:
+    """U of eq. ``onefifth-rest-coeff`` for the Hertz spring (a = b = 1/2, gravity-free, first order in mu):
+    (u/U)^(1/5) = :func:`nonlin_cycle_loss`, i.e. U = u/loss(u)^5 (independent of u)."""
+    return float(1.0 / nonlin_cycle_loss(1.0, mu, rho, 0.5, 0.5) ** 5)
+
+
 # --------------------------------------------------------------------------- sec. 5: no inelastic collapse
 
 def asympt_4ord(gamma, T):

@@ -5,6 +5,8 @@ datasets it declares (config `checks.<name>.inputs`)."""
 
 #: named groups of datasets a claim group may list in its `inputs` (every other name is results/data/<name>.nc)
 DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
+# a check may read a sweep's gathered file as input `sweep-<name>` (bounce.config.SWEEP_INPUT_PREFIX)
+DATASET_GROUPS.update({f"sweep-{name}": [f"results/sweeps/{name}.nc"] for name in config.get("sweeps", {})})
 
 
 rule check:

@@ -1,0 +1,132 @@
+"""Check ``nonlinear-atlas``: the Discussion's asymptotic map over a grid of power laws (a, b), from the sweep
+``alpha-atlas`` (:mod:`bounce.sweeps.alpha_atlas`; its gathered file is the only input).
+
+1. ``alpha-limit`` (paper): lim n Xdot_n alpha = 1, alpha = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)), in every
+   fitted cell;
+2. ``flight-law`` (beyond): lim Xdot_n/(gamma tau_n) = 1 in every fitted cell;
+3. ``correction-decay`` (beyond): the correction decays like n^-p (c ln n + d) with p = 1 (Lemma Giorgio's).
+
+A cell's limit is the Richardson extrapolation of the sweep; its error is the larger of the extrapolation's own
+change (points moved by a factor 2) and its distance to the independent least-squares tail fit, and the tolerance
+``sigmas`` times that.  Cells whose run stopped early, had no decade of impacts past fit_n_min, or whose limit error exceeds
+``err_max`` (still in the transient) are listed as not determined (the decay exponent also where its error
+exceeds ``exponent_err_max``); the verdict covers the fitted cells and is not checkable if there are none.
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import xarray as xr
+
+from .base import BEYOND, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, variable
+
+NAME = "nonlinear-atlas"
+SUBJECT = "sec:Discussion"
+
+
+def _cells(ds: xr.Dataset) -> list[str]:
+    a, b, rho, g, mu = (ds[k].values for k in ("a", "b", "rho", "gamma", "mu"))
+    return [f"(a={a[i]:g}, b={b[j]:g}, rho={rho[c]:g}, gamma={g[c]:g}, mu={mu[c]:g})"
+            for i in range(a.size) for j in range(b.size) for c in range(rho.size)]
+
+
+def measure(spec: dict, inputs: list) -> SimpleNamespace:
+    (ds,) = inputs
+    k = float(spec["sigmas"])
+    names = _cells(ds)
+    shape = (len(names), ds.sizes["quantity"])
+    L = ds["limit"].values.reshape(shape)
+    err = np.maximum(ds["limit_err"].values.reshape(shape), np.abs(L - ds["tail_limit"].values.reshape(shape)))
+    p, p_err = ds["exponent"].values.reshape(shape), ds["exponent_err"].values.reshape(shape)
+    # a cell whose limit error exceeds err_max is not determined (still in its transient: no decade of the
+    # asymptotic regime within the events); its decay exponent likewise, or where p_err exceeds exponent_err_max
+    L, err = np.where(err <= float(spec["err_max"]), L, np.nan), np.where(err <= float(spec["err_max"]), err, np.nan)
+    keep = np.isfinite(L) & (p_err <= float(spec["exponent_err_max"]))
+    p, p_err = np.where(keep, p, np.nan), np.where(keep, p_err, np.nan)
+    data = xr.Dataset(coords={"cell": ("cell", np.array(names, dtype=object), {"long_name": "(a, b, rho, gamma, mu)",
+                                                                              "units": "1"}),
+                              "quantity": ("quantity", ds["quantity"].values, {"long_name": "fitted sequence q_n",
+                                                                                "units": "1"})})
+    data["limit"] = variable(("cell", "quantity"), L, "Richardson limit L (theory 1)")
+    data["limit_err"] = variable(("cell", "quantity"), err, "error of L: max(Richardson change, |L - tail fit|)")
+    data["exponent"] = variable(("cell", "quantity"), p, "decay exponent of the correction (theory 1)")
+    data["exponent_err"] = variable(("cell", "quantity"), p_err, "its error (window variants)")
+    data.attrs.update(check=NAME, sigmas=k, events=int(ds.attrs["events"]))
+    ctx = (f"sweep alpha-atlas: {len(names)} cells, {int(ds.attrs['events']):.3g} events each from xi_eq, fits on "
+           f"impacts n >= {int(ds.attrs['fit_n_min'])}")
+    return SimpleNamespace(names=names, L=L, err=err, p=p, p_err=p_err, k=k, data=data, ctx=ctx,
+                           quantities=list(ds["quantity"].values))
+
+
+def _atlas_verdict(m, quantity: str, value, err, target: float, text: str, ref: str, what: str) -> Verdict:
+    j = m.quantities.index(quantity)
+    v, e = value[:, j], err[:, j]
+    fitted = np.isfinite(v) & np.isfinite(e)
+    missing = [m.names[i] for i in np.nonzero(~fitted)[0]]
+    none = f"; not determined: {', '.join(missing)}" if missing else "; every cell determined"
+    if not fitted.any():
+        return Verdict(text, ref, m.ctx, f"{what} = {target:g}", "no fitted cell" + none, "none", NOT_CHECKABLE)
+    z = np.abs(v[fitted] - target) / np.maximum(e[fitted], np.finfo(float).tiny)
+    worst = int(np.nonzero(fitted)[0][int(np.argmax(z))])
+    bad = [m.names[i] for i, f in enumerate(fitted) if f and abs(v[i] - target) > m.k * e[i]]
+    return Verdict(
+        text, ref, f"{m.ctx}: {what} per cell",
+        f"{what} = {target:g} in every fitted cell",
+        f"{int(fitted.sum())} cells fitted; max |{what} - {target:g}| = {np.max(np.abs(v[fitted] - target)):.2g}; worst "
+        f"in units of its error: {m.names[worst]}: {v[worst]:.10g} +- {e[worst]:.2g}"
+        + (f"; outside: {', '.join(bad)}" if bad else "") + none,
+        f"|{what} - {target:g}| <= {m.k:g} x the cell's error", judge(not bad))
+
+
+CLAIMS: list = []
+
+
+@claim(CLAIMS, "alpha-limit", PAPER, SUBJECT)
+def alpha_limit(m, spec) -> Verdict:
+    return _atlas_verdict(m, "alpha", m.L, m.err, 1.0,
+                          "alpha_n -> mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) for every power law: lim n Xdot_n alpha = 1",
+                          "Discussion (map eq. mappa, Lemma Giorgio's)", "L")
+
+
+@claim(CLAIMS, "flight-law", BEYOND, SUBJECT)
+def flight_law(m, spec) -> Verdict:
+    return _atlas_verdict(m, "flight", m.L, m.err, 1.0, "Xdot_n / tau_n -> gamma for every power law",
+                          "beyond the paper (Discussion: 'the same asymptotic law as the linear case')", "L")
+
+
+@claim(CLAIMS, "correction-decay", BEYOND, SUBJECT)
+def correction_decay(m, spec) -> Verdict:
+    return _atlas_verdict(m, "alpha", m.p, m.p_err, 1.0,
+                          "the correction to n Xdot_n alpha decays like n^-1 (c ln n + d) for every power law",
+                          "Lemma Giorgio's (expansion of the map eq. mappa)", "p")
+
+
+def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
+    """Each cell's (L - 1)/error for both limits and (p - 1)/error for the decay, with the tolerance band."""
+    from ..figures.common import WIDTH, plt, save
+
+    k = float(ds.attrs["sigmas"])
+    fig, ax = plt.subplots(figsize=(WIDTH, 3.0), constrained_layout=True)
+    x = np.arange(ds.sizes["cell"])
+    series = [(ds["limit"].sel(quantity="alpha"), ds["limit_err"].sel(quantity="alpha"), 1.0, "o",
+               r"$(\lim n\dot X_n\alpha - 1)/$error"),
+              (ds["limit"].sel(quantity="flight"), ds["limit_err"].sel(quantity="flight"), 1.0, "s",
+               r"$(\lim \dot X_n/(\gamma\tau_n) - 1)/$error"),
+              (ds["exponent"].sel(quantity="alpha"), ds["exponent_err"].sel(quantity="alpha"), 1.0, "^",
+               r"(decay exponent $-1$)/error")]
+    for i, (v, e, target, marker, lab) in enumerate(series):
+        ax.plot(x + 0.15 * (i - 1), (v.values - target) / e.values, marker, ms=3.5, mfc="none", ls="none", label=lab)
+    ax.axhspan(-k, k, color="0.9", zorder=-1, label=f"tolerance: {k:g} x error")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xticks(x, [str(c) for c in ds["cell"].values], rotation=90, fontsize=4)
+    ax.set_ylabel("deviation in units of the cell's error")
+    ax.legend(fontsize=6, ncol=2)
+    fig.suptitle(f"power-law spring: fitted limits per cell of sweep alpha-atlas ({ds.attrs['events']:.3g} events; "
+                 "missing: not determined)", fontsize=8)
+    save(fig, outputs)
+
+
+TITLE = "Discussion: the asymptotic map of the power-law spring over (a, b) (sweep alpha-atlas)"
+CHECK = Check(NAME, measure, tuple(CLAIMS), plot, TITLE)
