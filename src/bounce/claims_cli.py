@@ -4,7 +4,8 @@ CLAIM_ID is ``group/claim`` (e.g. ``static-equilibrium/energy-limit``) or a whol
 The group's config slice is read from ``--config`` (default ``config/config.yaml``, with
 ``--configfile`` overlays as in Snakemake), validated against ``config/schema.yaml`` with its
 defaults applied (as the pipeline does), and its input datasets are read from ``--data``
-(default ``results/data``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
+(default ``results/data``; a sweep's gathered file from ``results/sweeps``, the group's experiments from
+``results/data/checks/<group>/``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
 Prints one line per verdict row; exit status 0 if no row is ``not reproduced`` unexpectedly
 (a claim with a ``known_failure`` is expected to be not reproduced), 1 otherwise, 2 on bad input.
 """
@@ -64,7 +65,10 @@ def load_config(paths: list[str], schema_path: str) -> dict:
 
 def dataset_paths(name: str, config: dict, data_dir: str) -> list[Path]:
     """Files of one declared input: ``sticky-runs`` is the eps = 0 run and the eps_convergence runs of
-    config ``sticky`` (as workflow/rules/checks.smk), any other name results/data/<name>.nc."""
+    config ``sticky`` (as workflow/rules/checks.smk), a sweep its gathered file results/sweeps/<name>.nc (beside
+    the data folder), any other name results/data/<name>.nc."""
+    if name in config.get("sweeps", {}):
+        return [Path(data_dir).parent / "sweeps" / f"{name}.nc"]
     if name == "sticky-runs":
         eps = [0.0] + [float(e) for e in config["sticky"]["eps_convergence"] if float(e) != 0.0]
         return [Path(data_dir) / "sticky" / f"eps{e:g}.nc" for e in eps]
@@ -108,6 +112,7 @@ def main(argv=None) -> int:
         return 2
     spec = config["checks"][name]
     paths = [p for scene in spec["inputs"] for p in dataset_paths(scene, config, args.data)]
+    paths += [Path(args.data) / "checks" / name / f"{e.name}.nc" for e in group.experiments]  # rule check_experiment
     missing = [str(p) for p in paths if not p.exists()]
     if missing:
         print(f"error: input datasets missing: {', '.join(missing)} (run the pipeline first)", file=sys.stderr)

@@ -130,7 +130,7 @@ def _check_scenes(config: dict) -> None:
 def _check_references(config: dict) -> None:
     """Every name a figure, study or check uses must be a dataset some rule produces."""
     scenes = set(config.get("scenes", {}))
-    datasets = scenes | set(DERIVED_DATASETS)
+    datasets = scenes | set(DERIVED_DATASETS) | set(config.get("sweeps", {}))  # a sweep: its gathered file
 
     def need(where: str, name: str, pool: set, what: str) -> None:
         if name not in pool:

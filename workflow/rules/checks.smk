@@ -1,17 +1,56 @@
 """Stage 4: every checkable claim of the paper, one claim group per rule -> results/checks/<name>.nc
 (numbers and verdicts) + fig-<name>.{png,pdf}; then the validation report.  A group reads only the
-datasets it declares (config `checks.<name>.inputs`)."""
+datasets it declares (config `checks.<name>.inputs`: scenes, the sticky runs, sweeps' gathered files)
+and its own experiments (bounce.checks.base.Experiment: its long simulations, one rule each)."""
 
+from bounce.checks import registry as check_registry
+
+CHECK_GROUPS = check_registry()
 
 #: named groups of datasets a claim group may list in its `inputs` (every other name is results/data/<name>.nc)
 DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
 
 
+def check_input_files(name):
+    """The files of claim group `name`: its declared inputs in order (a sweep's name is its gathered file),
+    then its experiments."""
+    files = []
+    for item in config["checks"][name]["inputs"]:
+        if item in DATASET_GROUPS:
+            files += DATASET_GROUPS[item]
+        elif item in SWEEPS:
+            files.append(f"results/sweeps/{item}.nc")
+        else:
+            files.append(f"results/data/{item}.nc")
+    return files + [f"results/data/checks/{name}/{e.name}.nc" for e in CHECK_GROUPS[name].experiments]
+
+
+rule check_experiment:
+    """A long simulation of a claim group (bounce.checks.base.Experiment), from the config keys it declares."""
+    output:
+        "results/data/checks/{name}/{experiment}.nc",
+    params:
+        spec=lambda w: as_json(CHECK_GROUPS[w.name].experiment(w.experiment).spec(config["checks"][w.name])),
+    resources:
+        mem_mb=2000,
+        runtime=60,
+    log:
+        "results/logs/checks/{name}/{experiment}.log",
+    benchmark:
+        "results/timing/checks/{name}/{experiment}.tsv"
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in CHECKS),
+        experiment="[a-z0-9][a-z0-9-]*",
+    shell:
+        "python -m bounce.tasks check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
+        "--spec {params.spec:q} --out {output} > {log} 2>&1"
+
+
 rule check:
-    """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)."""
+    """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)
+    and on its experiments."""
     input:
-        lambda w: [f for name in config["checks"][w.name]["inputs"]
-                   for f in DATASET_GROUPS.get(name, [f"results/data/{name}.nc"])],
+        lambda w: check_input_files(w.name),
     output:
         nc="results/checks/{name}.nc",
         png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),

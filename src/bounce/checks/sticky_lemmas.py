@@ -31,17 +31,18 @@ import numpy as np
 import xarray as xr
 from mpmath import mp
 
-from ..anomalies import construct_contact, minimum_sticky_energy, monte_carlo
+from ..anomalies import construct_contact, minimum_sticky_energy
 from ..events import DETACH, GRAZING, STICKY_START, XN_ULPS, contact_window, energy_excess
 from ..flight import EPS
 from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import SQRT2, eps_star, sticky_duration_infimum, sticky_fundamental, sticky_onset
-from .base import BEYOND, PAPER, Check, Verdict, claim, judge, recorded, variable
+from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, recorded, split_inputs, variable
 
 NAME = "sticky-lemmas"
-
+MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
+FAMILY_KEYS = ("sticky_ic_params", "sticky_ic_eps", "horizon", "horizon_events")
 
 
 def onset(gamma: float, mu: float, alpha: float) -> Deviations:
@@ -60,10 +61,35 @@ def sticky_run(gamma, mu, alpha, t_max=math.inf):
     return math.inf, math.nan, tr
 
 
+def sticky_ic_family(spec: dict) -> xr.Dataset:
+    """Experiment ``sticky-ic-family``: eq. sticky-ic for every eps of ``sticky_ic_eps`` (gamma, mu =
+    ``sticky_ic_params``) followed to t = ``horizon`` (at most ``horizon_events`` events): its sticky onsets,
+    the end of its last sticky phase and why the run stopped."""
+    g, m = map(float, spec["sticky_ic_params"])
+    p = Parameters(g, m)
+    counts, last_end, stops = [], [], []
+    for e in (float(v) for v in spec["sticky_ic_eps"]):
+        tr = simulate(p, State.sticky_ic(p, eps=e), max_events=int(spec["horizon_events"]), t_max=float(spec["horizon"]))
+        st = np.flatnonzero(tr.kind == STICKY_START)
+        det = np.flatnonzero(tr.kind == DETACH)
+        counts.append(int(st.size))
+        last_end.append(float(tr.t[det[-1]]) if det.size else (math.inf if st.size else math.nan))
+        stops.append(tr.stop_reason)
+    return xr.Dataset({
+        "eps": variable("run", np.array(spec["sticky_ic_eps"], dtype=float), "eps of eq. sticky-ic"),
+        "sticky_count": variable("run", np.array(counts, dtype=np.int64), "sticky onsets up to the horizon"),
+        "last_sticky_end": variable("run", np.array(last_end), "end of the last sticky phase",
+                                    comment="inf: it never ends; nan: no sticky phase"),
+        "stop_reason": variable("run", np.array(stops, dtype=object), "why the run stopped"),
+    }, attrs={"title": "eq. sticky-ic followed to the horizon (Theorem Finite-number-sticky-ev)", "gamma": g, "mu": m,
+              "horizon": float(spec["horizon"])})
+
+
 # --------------------------------------------------------------------------- run
 
 def measure(spec: dict, inputs=()) -> SimpleNamespace:
     """Every section's numbers and its verdict rows, recorded under their claim ids (see CLAIMS)."""
+    _, named = split_inputs(inputs)
     pairs = [tuple(map(float, p)) for p in spec["params"]]
     rows: dict[str, Verdict] = {}
     P = len(pairs)
@@ -138,11 +164,10 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
             tr = simulate(Parameters(g, m), start, max_events=1)
             c_kind[k, j, 1] = tr.kind[0]
             c_excess[k, j, 1] = (tr.energy_excess[0] - emin_excess) / g**2
-    # Monte-Carlo (shared with the finite-number test below)
-    mc_spec = {"seed": spec["seed"], "n_samples": spec["mc_samples"], "events": spec["mc_events"],
-               **{k: spec[k] for k in ("gamma", "mu_under", "mu_over", "energy_over_gamma2", "tail")}}
-    mc = monte_carlo(mc_spec)
-    mc_anom = int(mc["counts"][:, [GRAZING, STICKY_START]].sum())
+    # Monte-Carlo (the sweep's gathered file; shared with the finite-number test below)
+    mc = named[MONTE_CARLO]
+    mc_counts = mc["counts"].values
+    mc_anom = int(mc_counts[:, [GRAZING, STICKY_START]].sum())
     anomalous = (c_kind == STICKY_START) | (c_kind == GRAZING)
     min_ex = float(np.nanmin(np.where(anomalous, c_excess, np.nan)))
     at_min = c_excess[:, factors == 1.0, 0].ravel() / c_drift[:, factors == 1.0].ravel()
@@ -152,7 +177,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         paper_ref="lem:Min-sticky-energy",
         computed=f"{int(anomalous.sum())} anomalous contacts reached by the dynamics (backward-evolved from sticky/"
                  f"grazing states with alpha_s = f alpha_min, f in {factors.tolist()}, (gamma, mu) in "
-                 f"{c_pairs}): E at the event minus E_min; and {len(mc['gamma'])}-run Monte-Carlo",
+                 f"{c_pairs}): E at the event minus E_min; and the {mc.sizes['item']}-run Monte-Carlo of sweep {MONTE_CARLO}",
         expected="(E - E_min)/gamma^2 >= 0 at every anomalous event; at the sticky minimiser (f = 1) E - E_min = "
                  "the dissipation 2 mu xi'^2 (T - t_1) between the recorded onset (early by <= delta3) and the exact one",
         measured=f"min (E - E_min)/gamma^2 = {min_ex:.3g}; at f = 1, (E - E_min)/dissipation = "
@@ -316,21 +341,15 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         verdict=judge(not bad0))
 
     # ---- (d) Theorem Finite-number-sticky-ev
-    mc_sticky_max = int(mc["counts"][:, STICKY_START].max())
-    eps_family = [float(e) for e in spec["sticky_ic_eps"]]
-    g_ic, m_ic = map(float, spec["sticky_ic_params"])
-    horizon = float(spec["horizon"])
-    p_ic = Parameters(g_ic, m_ic)
-    fam_counts, fam_last_end, fam_stop, fam_e0 = [], [], [], []
-    for e in eps_family:
-        tr = simulate(p_ic, State.sticky_ic(p_ic, eps=e), max_events=int(spec["horizon_events"]),
-                      t_max=horizon)
-        st = np.flatnonzero(tr.kind == STICKY_START)
-        fam_counts.append(int(st.size))
-        det = np.flatnonzero(tr.kind == DETACH)
-        fam_last_end.append(float(tr.t[det[-1]]) if det.size else (math.inf if st.size else math.nan))
-        fam_stop.append(tr.stop_reason)
-        fam_e0.append(float(energy_excess(0.0, e, 0.5 * (-0.1 - e), 2 * g_ic + 0.1 * m_ic, g_ic)))
+    mc_sticky_max = int(mc_counts[:, STICKY_START].max())
+    family = named["sticky-ic-family"]  # experiment sticky-ic-family
+    eps_family = [float(e) for e in family["eps"].values]
+    g_ic, m_ic = float(family.attrs["gamma"]), float(family.attrs["mu"])
+    horizon = float(family.attrs["horizon"])
+    fam_counts = [int(c) for c in family["sticky_count"].values]
+    fam_last_end = [float(t) for t in family["last_sticky_end"].values]
+    fam_stop = [str(r) for r in family["stop_reason"].values]
+    fam_e0 = [float(energy_excess(0.0, e, 0.5 * (-0.1 - e), 2 * g_ic + 0.1 * m_ic, g_ic)) for e in eps_family]
     # energy budget: every finite sticky event dissipates at least dE_min (measured over the alpha grid)
     k_ic = pairs.index((g_ic, m_ic)) if (g_ic, m_ic) in pairs else 0
     dE_min = float(np.nanmin(dissipated[k_ic]))
@@ -341,8 +360,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
     rows["finitely-many-sticky-events"] = Verdict(
         claim="Every solution has at most finitely many sticky events",
         paper_ref="thm:Finite-number-sticky-ev",
-        computed=f"sticky_start counts up to t = {horizon:g}: Monte-Carlo ({len(mc['gamma'])} runs x {spec['mc_events']} "
-                 f"events) and eq. sticky-ic (gamma = {g_ic}, mu = {m_ic}, Ydot0 = -0.1) for eps in {eps_family}; "
+        computed=f"sticky_start counts up to t = {horizon:g}: Monte-Carlo ({mc.sizes['item']} runs x "
+                 f"{int(mc.attrs['events'])} events, sweep {MONTE_CARLO}) and eq. sticky-ic (experiment sticky-ic-family) (gamma = {g_ic}, mu = {m_ic}, Ydot0 = -0.1) for eps in {eps_family}; "
                  f"bound 1 + (E(0) - E_min)/dE_min with dE_min = min over alpha_s of the energy the simulator "
                  f"dissipates in one sticky phase",
         expected="finite counts, below the energy bound",
@@ -385,7 +404,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
             "family_eps": variable("family", np.array(eps_family), "eps of eq. sticky-ic"),
             "family_sticky_count": variable("family", np.array(fam_counts), "sticky events up to the horizon"),
             "family_bound": variable("family", np.array(bound), "energy bound on the number of sticky events"),
-            "mc_sticky_count": variable("sample", mc["counts"][:, STICKY_START], "sticky events per Monte-Carlo run"),
+            "mc_sticky_count": variable("sample", mc_counts[:, STICKY_START], "sticky events per Monte-Carlo run"),
         },
         coords={"contact": ("contact", np.array(["sticky", "grazing"], dtype=object),
                             {"long_name": "constructed contact type", "units": "1"})},
@@ -503,4 +522,5 @@ def min_energy_above_equilibrium(m, spec) -> Verdict:
 
 
 CHECK = Check(NAME, measure, tuple(CLAIMS), plot,
-              title="Sticky events: minimum energy, duration, infinite events, finiteness")
+              title="Sticky events: minimum energy, duration, infinite events, finiteness",
+              experiments=(Experiment("sticky-ic-family", FAMILY_KEYS, sticky_ic_family),))
