@@ -27,6 +27,7 @@ from .events import IMPACT, TANGENT_ACC, TANGENT_JERK, energy_excess, rounding_l
 from .flight import gap
 from .model import Deviations
 from .oscillator import make_oscillator
+from .fitting import tail_exponent
 from .theory import contact_derivatives
 
 
@@ -97,6 +98,23 @@ def binned_tail(hist: np.ndarray, edges: np.ndarray, k: int, edge: str = "upper"
     return np.repeat(at, counts)[:k]
 
 
+def binned_tail_exponent(hist: np.ndarray, edges: np.ndarray, lo: int, hi: int) -> tuple[float, float, float]:
+    """N(< r) = C r^p (:func:`bounce.fitting.tail_exponent`) through the empirical CDF of a histogrammed sample at
+    its upper bin edges (exact there), from the last edge with at most ``lo`` values below it to the first with at
+    least ``hi``; pooled over the leading axes of ``hist``.  (p, its std. error, C); nan if fewer than two edges."""
+    counts = hist.reshape(-1, hist.shape[-1]).sum(axis=0)
+    below = np.cumsum(counts)[counts > 0]
+    at = edges[1:][counts > 0]
+    i0 = max(int(np.searchsorted(below, lo, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(below, hi)), below.size - 1)
+    below, at = below[i0:i1 + 1], at[i0:i1 + 1]
+    if below.size < 2:
+        return math.nan, math.nan, math.nan
+    ranked = np.zeros(int(below[-1]))  # rank k -> value; zeros (no CDF point there) are skipped by the fit
+    ranked[below - 1] = at
+    return tail_exponent(ranked, int(below[0]), int(below[-1]))
+
+
 def monte_carlo_summary(ds, k: int) -> dict:
     """The Monte Carlo of the gathered sweep ``contact-monte-carlo`` (its file, read as a declared input):
     per sample gamma, mu, regime, E - E_m, event counts per kind and the smallest speed ratio and classifier
@@ -107,6 +125,7 @@ def monte_carlo_summary(ds, k: int) -> dict:
         tail_ratio=binned_tail(ds["ratio_hist"].values, ds["ratio_edges"].values, k),
         tail_margin=binned_tail(ds["margin_hist"].values, ds["margin_edges"].values, k),
         tail_margin_lower=binned_tail(ds["margin_hist"].values, ds["margin_edges"].values, k, "lower"),
+        **{v: ds[v].values for v in ("ratio_hist", "ratio_edges", "margin_hist", "margin_edges")},
         n_contacts=int(ds["ratio_hist"].values.sum()), seed=int(ds.attrs["seed"]), events=int(ds.attrs["events"]),
         bin_width=float(np.log10(ds["ratio_edges"].values[2] / ds["ratio_edges"].values[1])))
 

@@ -11,7 +11,8 @@ Three measurements, each against the event classifier of :mod:`bounce.events`:
    that ends at it, v_ref = max(|Xdot_{n-1}|, |Xdot_n|) (|xdot(0)| for the first
    flight), and the classifier's rounding window v_tol (below).  The low tail of
    the ratio's distribution, N(|Xdot_n|/v_ref < r) ~ r^p, is fitted (on the sweep's
-   histogram: the empirical CDF at its quarter-decade bin edges): p > 0 means
+   histogram: the empirical CDF at its quarter-decade bin edges that bracket the ranks
+   ``tail_fit``, :func:`bounce.anomalies.binned_tail_exponent`): p > 0 means
    no atom at zero speed.  (Asymptotically, near a grazing a dip of depth d below
    the floor gives a speed ~ sqrt(d), so p -> 2; the sampled ratios, >= 1e-2, are
    not yet in that tail and give a larger p.)  Extrapolating the margin
@@ -52,9 +53,8 @@ import xarray as xr
 from mpmath import mp, mpf
 
 from .. import reference
-from ..anomalies import construct_contact, monte_carlo_summary, sample_parameters
+from ..anomalies import binned_tail_exponent, construct_contact, monte_carlo_summary, sample_parameters
 from ..events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
-from ..fitting import tail_exponent
 from ..model import Deviations, Parameters
 from ..simulate import simulate
 from ..theory import E_min, contact_derivatives, min_sticky_energy, sticky_onset
@@ -254,14 +254,14 @@ class Measurements:
         """Tail fits of the Monte Carlo: N(< r) ~ r^p of both ratios; the expected count inside the window."""
         mc = self.mc
         lo, hi = self.spec["tail_fit"]
-        p_ratio, p_ratio_err, _ = tail_exponent(mc["tail_ratio"], lo, hi)
-        p_margin, p_margin_err, _ = tail_exponent(mc["tail_margin"], lo, hi)
+        p_ratio, p_ratio_err, c_ratio = binned_tail_exponent(mc["ratio_hist"], mc["ratio_edges"], lo, hi)
+        p_margin, p_margin_err, _ = binned_tail_exponent(mc["margin_hist"], mc["margin_edges"], lo, hi)
         # N(margin < m) ~ m^p below the k-th smallest margin m_(k); p >= 1 for any density that is finite at
         # zero (p = 2 for the square-root fold of near-grazing flights), so the linear extrapolation is an
         # upper estimate
         k_lo = int(lo)
         low = float(mc["tail_margin_lower"][k_lo - 1])
-        return SimpleNamespace(lo=lo, hi=hi, p_ratio=p_ratio, p_ratio_err=p_ratio_err, p_margin=p_margin,
+        return SimpleNamespace(lo=lo, hi=hi, p_ratio=p_ratio, p_ratio_err=p_ratio_err, c_ratio=c_ratio, p_margin=p_margin,
                                p_margin_err=p_margin_err, k_lo=k_lo,
                                expected_in_window=k_lo / low if low > 0 else math.inf)
 
@@ -338,7 +338,7 @@ def near_grazing_measure(m, spec) -> Verdict:
                  f"extrapolated measure at the classifier's window "
                  f"v_tol: {np.max(nr['count_at_window']):.2g} grid cells; Monte-Carlo ({mc['n_contacts']} impacts) "
                  f"low-tail exponent of |Xdot_n|/v_ref {tl.p_ratio:.2f} +- {tl.p_ratio_err:.2f} (CDF at the "
-                 f"{m.mc['bin_width']:g}-decade bin edges; not yet in the "
+                 f"{m.mc['bin_width']:g}-decade bin edges around ranks {tl.lo}..{tl.hi}; not yet in the "
                  f"asymptotic range: smallest ratio {np.nanmin(mc['min_ratio']):.2g})",
         tolerance=f"|k - 2| <= {tol:g} and the two half-range slopes agree to {tol:g}: the first-order fold is "
                   f"exact up to O(h/H0) corrections, and over the fit range the half-range slopes differ by < 1e-3",
@@ -546,7 +546,7 @@ def _dataset(m, spec: dict) -> xr.Dataset:
         },
         coords={"kind": ("kind", np.array(KIND_NAMES, dtype=object), {"long_name": "event kind", "units": "1"})},
         attrs={"check": NAME, "n_samples": n_mc, "events_per_sample": mc["events"], "seed": mc["seed"],
-               "n_contacts": mc["n_contacts"], "tail_exponent_ratio": tl.p_ratio,
+               "n_contacts": mc["n_contacts"], "tail_exponent_ratio": tl.p_ratio, "tail_prefactor_ratio": tl.c_ratio,
                "tail_exponent_ratio_err": tl.p_ratio_err, "tail_exponent_margin": tl.p_margin,
                "expected_in_window": tl.expected_in_window,
                "scan_v_tol": scan["v_tol"], "scan_gamma": scan["gamma"], "scan_mu": scan["mu"],
@@ -569,7 +569,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         ax.loglog(t, k, ".", ms=3, color=c, label=lab)
     lo, hi = int(ds.attrs["tail_fit_lo"]), int(ds.attrs["tail_fit_hi"])
     t = ds["tail_ratio"].values
-    p, _, C = tail_exponent(t, lo, hi)
+    p, C = ds.attrs["tail_exponent_ratio"], ds.attrs["tail_prefactor_ratio"]  # the fit of the verdicts
     rr = np.geomspace(t[0], t[min(hi, t.size) - 1], 20)
     ax.loglog(rr, C * rr**p, "k-", lw=0.7, label=r"fit $N\propto r^{%.2f}$" % p)
     ax.axvline(1.0, color="C1", ls=":", lw=0.8)
