@@ -63,20 +63,8 @@ def load_config(paths: list[str], schema_path: str) -> dict:
     return apply_defaults(config, yaml.safe_load(Path(schema_path).read_text()))
 
 
-def dataset_paths(name: str, config: dict, data_dir: str) -> list[Path]:
-    """Files of one declared input: ``sticky-runs`` is the eps = 0 run and the eps_convergence runs of
-    config ``sticky`` (as workflow/rules/checks.smk), a sweep its gathered file results/sweeps/<name>.nc (beside
-    the data folder), any other name results/data/<name>.nc."""
-    if name in config.get("sweeps", {}):
-        return [Path(data_dir).parent / "sweeps" / f"{name}.nc"]
-    if name == "sticky-runs":
-        eps = [0.0] + [float(e) for e in config["sticky"]["eps_convergence"] if float(e) != 0.0]
-        return [Path(data_dir) / "sticky" / f"eps{e:g}.nc" for e in eps]
-    return [Path(data_dir) / f"{name}.nc"]
-
-
 def main(argv=None) -> int:
-    from .checks import registry
+    from .checks import input_files, registry
     from .io import read_dataset
 
     parser = argparse.ArgumentParser(prog="python -m bounce check", description=__doc__.splitlines()[0])
@@ -111,8 +99,8 @@ def main(argv=None) -> int:
         print(f"error: config {where}: {exc.message}", file=sys.stderr)
         return 2
     spec = config["checks"][name]
-    paths = [p for scene in spec["inputs"] for p in dataset_paths(scene, config, args.data)]
-    paths += [Path(args.data) / "checks" / name / f"{e.name}.nc" for e in group.experiments]  # rule check_experiment
+    # the files the rule check reads: datasets under --data, sweeps' gathered files beside it
+    paths = [Path(p) for p in input_files(name, config, args.data, str(Path(args.data).parent / "sweeps"))]
     missing = [str(p) for p in paths if not p.exists()]
     if missing:
         print(f"error: input datasets missing: {', '.join(missing)} (run the pipeline first)", file=sys.stderr)

@@ -3,26 +3,10 @@
 datasets it declares (config `checks.<name>.inputs`: scenes, the sticky runs, sweeps' gathered files)
 and its own experiments (bounce.checks.base.Experiment: its long simulations, one rule each)."""
 
+from bounce.checks import input_files as check_input_files
 from bounce.checks import registry as check_registry
 
 CHECK_GROUPS = check_registry()
-
-#: named groups of datasets a claim group may list in its `inputs` (every other name is results/data/<name>.nc)
-DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
-
-
-def check_input_files(name):
-    """The files of claim group `name`: its declared inputs in order (a sweep's name is its gathered file),
-    then its experiments."""
-    files = []
-    for item in config["checks"][name]["inputs"]:
-        if item in DATASET_GROUPS:
-            files += DATASET_GROUPS[item]
-        elif item in SWEEPS:
-            files.append(f"results/sweeps/{item}.nc")
-        else:
-            files.append(f"results/data/{item}.nc")
-    return files + [f"results/data/checks/{name}/{e.name}.nc" for e in CHECK_GROUPS[name].experiments]
 
 
 rule check_experiment:
@@ -50,7 +34,7 @@ rule check:
     """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)
     and on its experiments."""
     input:
-        lambda w: check_input_files(w.name),
+        lambda w: check_input_files(w.name, config),
     output:
         nc="results/checks/{name}.nc",
         png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),
