@@ -8,6 +8,9 @@
   verdict of the claim that tests the law (and only that one).
 * the contract: no module of bounce.checks imports another; claim ids are unique; each subject is
   declared in config ``report.subjects``; one claim runs alone (``python -m bounce check``).
+* every experiment in the graph: the groups read their sweeps (small gathered files built here as the rules
+  build them) and experiments as inputs; ``test_probe_budget`` counts the events of every simulate call a
+  group makes on its inputs and fails above checks.base.PROBE_EVENTS.
 """
 
 from __future__ import annotations
