@@ -556,6 +556,9 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         mm = np.geomspace(min(mus.min(), 0.01), max(mus.max(), 5.0), 300)
         a4.semilogx(mm, [correction_exponent(x) for x in mm], "k-", lw=0.8,
                     label=r"theory $\min(1, 3\lambda/\mu)$")
+        from matplotlib.ticker import NullFormatter
+
+        a3.xaxis.set_minor_formatter(NullFormatter())  # minor labels of a short log axis overlap
         a3.set_xlabel(r"$\mu$")
         a3.set_ylabel(r"transient $n_{10\%}$ of $n\tau_n\mu/3$")
         a3.set_title(r"(c) atlas: impacts before $|n\tau_n\mu/3-1|<10\%$ for good", fontsize=8)
