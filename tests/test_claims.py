@@ -8,6 +8,9 @@
   verdict of the claim that tests the law (and only that one).
 * the contract: no module of bounce.checks imports another; claim ids are unique; each subject is
   declared in config ``report.subjects``; one claim runs alone (``python -m bounce check``).
+* every experiment in the graph: the groups read their sweeps (small gathered files built here as the rules
+  build them) and experiments as inputs; ``test_probe_budget`` counts the events of every simulate call a
+  group makes on its inputs and fails above checks.base.PROBE_EVENTS.
 """
 
 from __future__ import annotations
@@ -24,17 +27,28 @@ import yaml
 from mpmath import mp, mpf
 
 from bounce import Deviations, Parameters, State, simulate, theory
-from bounce.anomalies import construct_contact, monte_carlo
+from bounce.anomalies import construct_contact, monte_carlo_summary
 from bounce.checks import errata, registry
 from bounce.checks import nongeneric as ng
 from bounce.checks import rigid_models
-from bounce.checks.base import ERRATUM, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, VERDICTS, read_verdicts
+from bounce.checks.base import (
+    ERRATUM,
+    KINDS,
+    NOT_CHECKABLE,
+    NOT_REPRODUCED,
+    PROBE_EVENTS,
+    REPRODUCED,
+    VERDICTS,
+    read_verdicts,
+)
 from bounce.checks.sticky_lemmas import sticky_run
-from bounce.claims_cli import group_spec
+from bounce.claims_cli import apply_defaults, group_spec
 from bounce.claims_cli import main as check_main
 from bounce.events import DETACH, GRAZING, IMPACT, STICKY_START, contact_window
 from bounce.scenes import scene_dataset
 from bounce.sticky_study import sticky_duration
+from bounce.sweeps import registry as sweep_registry
+from bounce.sweeps.base import gather, run_shard
 
 ROOT = Path(__file__).resolve().parents[1]
 UD = {"gamma": 0.01, "mu": 0.01, "initial": {"psi": 6.0, "psidot": 0.0, "xi": 0.0, "xidot": 0.0},
@@ -52,15 +66,13 @@ FALL = dict(UD, stop={"events": 3000}, keep=None)
 
 #: each group's config slice for the small inputs (schema defaults fill the rest)
 OVERRIDES = {
-    "main-theorem": {"fit": {"n_min": 1000}, "atlas": {"mu": [0.3, 2.0], "gamma": [1e-3], "psi0": 0.25,
-                                                       "events": 20000}, "plot_points": 100},
+    "main-theorem": {"fit": {"n_min": 1000}, "plot_points": 100},
     "static-equilibrium": {"asymptotic_min_events": 20000, "limit_bracket": 0.01},
     "restitution": {},
     "rigid-collapse": {"onefifth_bounces": 30000, "our_r_bounces": 30000, "tail_window": [1000, 5000]},
-    "contact-non-generic": {"seed": 2, "n_samples": 6, "events": 30, "n_constructed": 3, "tail": 50,
-                            "tail_fit": [2, 20], "alpha_over_gamma": [0.1, 10.0], "scan_n": 5},
-    "sticky-lemmas": {"params": [[0.01, 0.01], [0.1, 0.5], [0.01, 0.0]], "mc_samples": 30, "mc_events": 50,
-                      "n_alpha": 8, "construct_factors": [0.9, 1.0, 2.0], "sticky_ic_eps": [0.0, 1.0e-4, 1.0e-2],
+    "contact-non-generic": {"seed": 2, "n_constructed": 3, "tail_fit": [2, 20], "alpha_over_gamma": [0.1, 10.0],
+                            "scan_n": 5},
+    "sticky-lemmas": {"params": [[0.01, 0.01], [0.1, 0.5], [0.01, 0.0]], "n_alpha": 8, "construct_factors": [0.9, 1.0, 2.0], "sticky_ic_eps": [0.0, 1.0e-4, 1.0e-2],
                       "horizon": 50.0},
     "sticky-convergence": {"fit_eps_max": 1e-2, "band_mu": [0.0, 0.02]},
     "errata": {"asym_events": 20000, "asym_checkpoints": [1000, 10000], "map_iterations": 100000},
@@ -101,35 +113,46 @@ def _synthetic_sticky_inputs(p_rms: float) -> list:
     return [conv, inf]
 
 
+#: the sweeps the groups read (their gathered files), small: the atlas of check main-theorem, the Monte Carlo of
+#: contact-non-generic and sticky-lemmas
+SWEEPS = {
+    "asymptotic-atlas": {"shards": 1, "mu": {"min": 0.3, "max": 2.0, "n": 2}, "gamma": {"min": 1e-3, "max": 1e-3, "n": 1},
+                         "psi0": 0.25, "events": 20000, "transient": 0.1, "fit": {"n_min": 1000}},
+    "contact-monte-carlo": {"shards": 1, "seed": 2, "n_samples": 30, "events": 50, "gamma": [1e-4, 0.2],
+                            "mu_under": [1e-3, 0.95], "mu_over": [1.05, 5.0], "energy_over_gamma2": [0.1, 1000.0]},
+    "hertz-restitution": {"shards": 1, "u": {"min": 1e-10, "max": 1.0, "n": 16}, "gamma": [1e-12, 1e-8, 1e-4]},
+    "alpha-atlas": {"shards": 1, "a": [0.0, 1.0], "b": [0.5], "events": 30000,
+                    "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}]},
+}
+
+
 @functools.cache
-def sweep_dataset(name: str) -> xr.Dataset:
-    """A small gathered sweep (the check's input ``sweep-<name>``)."""
-    import copy
+def sweep(name: str) -> xr.Dataset:
+    """The gathered file of a small sweep (one shard, in this process), as the rule sweep_gather writes it."""
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    config["sweeps"][name] = SWEEPS[name]
+    sp = apply_defaults(config, yaml.safe_load((ROOT / "config" / "schema.yaml").read_text()))["sweeps"][name]
+    sw = sweep_registry()[name]
+    return gather(sw, sp, [run_shard(sw, sp, 0, workers=1, progress=False)])
 
-    from bounce.config import validated
-    from bounce.sweeps import registry as sweeps
-    from bounce.sweeps.base import gather, run_shard
 
-    small = {"hertz-restitution": {"shards": 1, "u": {"min": 1e-10, "max": 1.0, "n": 16},
-                                   "gamma": [1e-12, 1e-8, 1e-4]},
-             "alpha-atlas": {"shards": 1, "a": [0.0, 1.0], "b": [0.5], "events": 30000,
-                             "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}]}}[name]
-    cfg = copy.deepcopy(yaml.safe_load((ROOT / "config" / "config.yaml").read_text()))
-    cfg["sweeps"][name] = small
-    sp = validated(cfg)["sweeps"][name]
-    return gather(sweeps()[name], sp, [run_shard(sweeps()[name], sp, 0, progress=False)])
+@functools.cache
+def experiments(name: str) -> tuple:
+    """The group's experiments on its small spec, as the rule check_experiment writes them."""
+    return tuple(e.dataset(spec(name)) for e in registry()[name].experiments)
 
 
 def inputs_for(name: str) -> list:
-    if name == "onefifth-rest-coeff":
-        return [sweep_dataset("hertz-restitution"), scenes()["hertz"]]
-    if name == "nonlinear-atlas":
-        return [sweep_dataset("alpha-atlas")]
     s = scenes()
-    return {"main-theorem": [s["ud"], s["od"]], "static-equilibrium": [s["ud"], s["od"], s["rest"]],
-            "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
-            "sticky-convergence": _synthetic_sticky_inputs(1.6), "paper-figures": [s["fall"], s["rest"]],
-            "nonlinear": [s[k] for k in NONLIN]}.get(name, [])
+    declared = {"main-theorem": [s["ud"], s["od"], sweep("asymptotic-atlas")],
+                "static-equilibrium": [s["ud"], s["od"], s["rest"]],
+                "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
+                "sticky-convergence": _synthetic_sticky_inputs(1.6), "paper-figures": [s["fall"], s["rest"]],
+                "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
+                "sticky-lemmas": [sweep("contact-monte-carlo")],
+                "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
+                "nonlinear-atlas": [sweep("alpha-atlas")]}.get(name, [])
+    return declared + list(experiments(name))
 
 
 @functools.cache
@@ -216,6 +239,77 @@ def test_one_claim_runs_alone(tmp_path, capsys):
     assert check_main(["static-equilibrium/no-such-claim"]) == 2
 
 
+# --------------------------------------------------------------------------- every experiment in the graph
+
+def _events_per_simulate_call(monkeypatch) -> list:
+    """Wrap bounce's simulate wherever a bounce module imported it; the list receives the events of every call."""
+    import importlib
+    import sys
+
+    real = importlib.import_module("bounce.simulate").simulate
+    calls: list = []
+
+    def counted(*args, **kwargs):
+        out = real(*args, **kwargs)
+        calls.append(len(out))
+        return out
+
+    for module in list(sys.modules.values()):
+        if getattr(module, "__name__", "").startswith("bounce") and getattr(module, "simulate", None) is real:
+            monkeypatch.setattr(module, "simulate", counted)
+    return calls
+
+
+@pytest.mark.parametrize("name", sorted(registry()))
+def test_probe_budget(name, monkeypatch):
+    """checks/base.py: a claim group simulates at most PROBE_EVENTS events per call (constructed probes); every
+    longer run is a scene, a sweep or an experiment produced by a rule and read as an input."""
+    group = registry()[name]
+    inputs = inputs_for(name)  # the scenes, sweeps and experiments: made by rules, outside the budget
+    calls = _events_per_simulate_call(monkeypatch)
+    m = group.measure(spec(name), inputs)
+    group.verdicts(m, spec(name))
+    if m is not None and hasattr(m, "data"):
+        m.data
+    assert max(calls, default=0) <= PROBE_EVENTS, (name, sorted(calls)[-5:])
+
+
+def test_probe_budget_counts_long_runs(monkeypatch):
+    """The counter sees a run inside an experiment (here errata's asymptotic run): the budget test can fail."""
+    calls = _events_per_simulate_call(monkeypatch)
+    sp = spec("errata", asym_events=1000)
+    registry()["errata"].experiment("asymptotic-run").dataset(sp)
+    assert calls == [1000]
+
+
+def test_experiments_read_only_their_declared_keys():
+    """An experiment's spec is the keys it declares (so editing another key of its group does not rerun it), and
+    every declared key is one of the group's config keys."""
+    for group in registry().values():
+        full = spec(group.name)
+        for e in group.experiments:
+            assert e.keys and set(e.spec(full)) == set(e.keys) <= set(full), (group.name, e.name)
+
+
+def test_one_claim_with_an_experiment_and_a_sweep_runs_alone(tmp_path, capsys):
+    """python -m bounce check reads a group's experiments from DATA/checks/<group>/ and its sweep from ../sweeps."""
+    data = tmp_path / "data"
+    (data / "checks" / "contact-non-generic").mkdir(parents=True)
+    (tmp_path / "sweeps").mkdir()
+    sweep("contact-monte-carlo").to_netcdf(tmp_path / "sweeps" / "contact-monte-carlo.nc")
+    for ds in experiments("contact-non-generic"):
+        ds.to_netcdf(data / "checks" / "contact-non-generic" / f"{ds.attrs['experiment']}.nc")
+    overlay = tmp_path / "small.yaml"
+    overlay.write_text(yaml.safe_dump({"checks": {"contact-non-generic": OVERRIDES["contact-non-generic"]}}))
+    base = ["--config", str(ROOT / "config" / "config.yaml"), str(overlay), "--schema", str(ROOT / "config" / "schema.yaml"),
+            "--data", str(data)]
+    assert check_main(["contact-non-generic/no-grazing", *base]) == 0
+    assert check_main(["contact-non-generic/finitely-many-grazings", *base]) == 0
+    out = capsys.readouterr().out
+    assert "reproduced      contact-non-generic/no-grazing" in out
+    assert "reproduced      contact-non-generic/finitely-many-grazings" in out
+
+
 # --------------------------------------------------------------------------- main-theorem
 
 def test_restart_reproduces_thinned_events():
@@ -234,8 +328,7 @@ def test_restart_reproduces_thinned_events():
 def _main_theorem(inputs, **changes):
     g = registry()["main-theorem"]
     sp = spec("main-theorem", **changes)
-    sp["atlas"] = None  # no atlas: the scene claims only
-    return g.verdicts(g.measure(sp, inputs), sp)
+    return g.verdicts(g.measure(sp, inputs), sp)  # no atlas file among the inputs: the scene claims only
 
 
 def test_main_theorem_flips_on_wrong_flight_law():
@@ -388,16 +481,33 @@ def test_classifier_switches_at_its_window():
     assert out["kinds"].tolist() == [STICKY_START, IMPACT]  # v = v_tol/10: tangential; v = 10 v_tol: impact
 
 
-def test_monte_carlo_small_has_no_anomalies_and_the_requested_energies():
-    mc = monte_carlo(spec("contact-non-generic", seed=5, n_samples=9, events=40, tail=50))
-    assert mc["counts"][:, [GRAZING, STICKY_START]].sum() == 0
-    assert mc["counts"].sum() == 9 * 40
-    for i in range(9):
-        p = Parameters(mc["gamma"][i], mc["mu"][i])
-        d = Deviations(mc["x"][i], mc["u"][i], mc["a"][i], mc["eta"][i])
-        e = d.to_state(p).energy(p) - p.energy_min
-        assert abs(e - mc["dE"][i]) <= 1e-9 * mc["dE"][i] + 1e-15
+def test_monte_carlo_summary_reads_the_sweep():
+    """The claims' view of the gathered sweep: every event counted, no anomaly, binned tails that bracket the
+    smallest per-sample values (upper bin edges above, lower edges below)."""
+    ds = sweep("contact-monte-carlo")
+    mc = monte_carlo_summary(ds, 20)
+    n = ds.sizes["item"]
+    assert mc["counts"][:, [GRAZING, STICKY_START]].sum() == 0 and mc["counts"].sum() == n * 50
+    assert mc["n_contacts"] == mc["counts"][:, IMPACT].sum()
     assert np.all(mc["min_margin"] > 1.0) and np.all((mc["min_ratio"] > 0) & (mc["min_ratio"] <= 1))
+    assert mc["tail_ratio"].size == 20 and np.all(np.diff(mc["tail_ratio"]) >= 0)
+    assert mc["tail_ratio"][0] >= np.nanmin(mc["min_ratio"]) and mc["tail_margin_lower"][0] <= np.nanmin(mc["min_margin"])
+    assert np.all(mc["tail_margin_lower"] < mc["tail_margin"])
+
+
+def test_binned_tail_exponent_recovers_a_power_law():
+    """N(< r) ~ r^2 sampled, histogrammed on quarter decades: the CDF at the bin edges gives p = 2; the ranked
+    values of the sample itself (fitting.tail_exponent) agree within their errors."""
+    from bounce.anomalies import binned_tail_exponent
+    from bounce.fitting import tail_exponent
+
+    r = np.sqrt(np.random.default_rng(4).uniform(size=200000))  # P(r < x) = x^2
+    edges = np.concatenate([[0.0], 10.0 ** np.arange(-4.0, 0.001, 0.25)])
+    hist = np.histogram(r, edges)[0][None, :]
+    p, err, _ = binned_tail_exponent(hist, edges, 20, 2000)
+    p_exact, err_exact, _ = tail_exponent(np.sort(r)[:2000], 20, 2000)
+    assert abs(p - 2.0) < 0.1 and abs(p_exact - 2.0) < 0.1 and abs(p - p_exact) < 3 * (err + err_exact) + 0.05
+    assert math.isnan(binned_tail_exponent(hist * 0, edges, 20, 2000)[0])
 
 
 def test_nongeneric_verdicts_on_a_small_sample():
@@ -414,9 +524,9 @@ def test_finitely_many_grazings_flips_without_damping():
     sp = spec("contact-non-generic", swish_params=[[0.01, 0.0]], swish_acc_over_gamma=[1.0],
               swish_ydot_over_gamma=[0.0], swish_events=300)
     g = registry()["contact-non-generic"]
-    damped = g.verdicts(g.measure(spec("contact-non-generic"), []), spec("contact-non-generic"),
-                        only="finitely-many-grazings")
-    undamped = g.verdicts(g.measure(sp, []), sp, only="finitely-many-grazings")
+    damped = g.verdicts(measured("contact-non-generic"), spec("contact-non-generic"), only="finitely-many-grazings")
+    runs = g.experiment("swish-runs").dataset(sp)
+    undamped = g.verdicts(g.measure(sp, [runs]), sp, only="finitely-many-grazings")
     assert damped[0].verdict == REPRODUCED and undamped[0].verdict == NOT_REPRODUCED
 
 
@@ -578,7 +688,7 @@ def _onefifth_rows(sw) -> list:
 def test_onefifth_claims_flip_for_another_law():
     """Single impacts doctored to a 1/4 law (1 - r times u^0.05) flip the exponent claim; to 1.1 (1 - r) (the same
     power, U / 1.1^5) flip U-first-order and not the exponent; the repeated impacts are untouched."""
-    sw = sweep_dataset("hertz-restitution")
+    sw = sweep("hertz-restitution")
     quarter = sw.copy(deep=True)
     quarter["r"] = 1.0 - (1.0 - sw["r"]) * sw["arrival"] ** 0.05
     rows = _onefifth_rows(quarter)
@@ -594,7 +704,7 @@ def test_onefifth_claims_flip_for_another_law():
 def test_nonlinear_atlas_flips_when_a_limit_is_off():
     """One cell's limit moved by 1e-3 in both estimates (a sequence converging to 1.001: far outside its error)
     flips alpha-limit and names that cell."""
-    ds = sweep_dataset("alpha-atlas").copy(deep=True)
+    ds = sweep("alpha-atlas").copy(deep=True)
     ds["limit"].values[0, 0, 0, 0] += 1e-3
     ds["tail_limit"].values[0, 0, 0, 0] += 1e-3
     group = registry()["nonlinear-atlas"]

@@ -38,6 +38,15 @@ def test_shipped_configs_are_valid():
     validated(cfg)
 
 
+def test_a_check_reads_a_sweep_only_if_the_config_has_it():
+    """A sweep's name is a dataset a check may declare (its gathered file) while config ``sweeps`` runs it."""
+    assert "asymptotic-atlas" in validated(CONFIG)["checks"]["main-theorem"]["inputs"]
+    cfg = copy.deepcopy(CONFIG)
+    del cfg["sweeps"]["asymptotic-atlas"]
+    with pytest.raises(ConfigError, match="checks.main-theorem.inputs.*no dataset named 'asymptotic-atlas'"):
+        validated(cfg)
+
+
 def test_defaults_come_from_the_schema():
     cfg = copy.deepcopy(CONFIG)
     del cfg["reduced"]["horizon"]["dps"]
@@ -49,6 +58,8 @@ def test_defaults_come_from_the_schema():
     "scenes.rigid-fall.gama", "scenes.rigid-fall.stop.event", "sticky.inference.nn", "figures.rest-coeff.nmax",
     "reduced.horizon.tolerance", "reduced.switch.cases.drop-underdamped.psi", "reduced.least_model.scenes.rest-coeff.qoi.r",
     "methods.work_precision.trackTol", "methods.stability_map.sweeps.0.curve", "methods.scenes.drop.gama",
+    "checks.main-theorem.atlas",  # the atlas is the sweep asymptotic-atlas now: its old key is refused
+    "checks.contact-non-generic.n_samples",  # the Monte Carlo is the sweep contact-monte-carlo
 ])
 def test_unknown_key_is_named(path):
     with pytest.raises(ConfigError) as err:
@@ -88,8 +99,9 @@ def test_scene_below_the_floor_is_refused_by_the_model():
     ("figures.rest-coeff.scene", "nosuch", "no scene named 'nosuch'"),
     ("methods.work_precision.scene", "nosuch", "no scene in methods.scenes named 'nosuch'"),
     ("scenes.sticky-convergence", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
-    ("scenes.sweep-alpha-atlas", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
-    ("checks.nonlinear-atlas.inputs", ["sweep-no-such-sweep"], "no dataset named 'sweep-no-such-sweep'"),
+    ("scenes.alpha-atlas", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
+    ("checks.nonlinear-atlas.inputs", ["no-such-sweep"], "no dataset named 'no-such-sweep'"),
+    ("checks.main-theorem.inputs", ["asymptotic-underdamped", "asymptotic-atlass"], "no dataset named 'asymptotic-atlass'"),
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):

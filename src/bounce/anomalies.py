@@ -1,10 +1,11 @@
 """Anomalous contacts (paper sections 3 and 7): the experiments behind Theorem contact-non-generic and
 the sticky lemmas, shared by the claims that use them.
 
-* :func:`monte_carlo`: random initial conditions over energies and dampings, simulated, with every
-  impact's arrival speed compared with its flight's launch speed and with the classifier's rounding
-  window (as :func:`bounce.events.contact_window`).  A Monte Carlo, not a scene: a candidate for a
-  sharded sweep rule whose gathered output the claims would then read.
+* :func:`sample_initial`, :func:`_contact_scales`: random initial conditions over energies and dampings,
+  and every impact's arrival speed compared with its flight's launch speed and with the classifier's
+  rounding window (as :func:`bounce.events.contact_window`): the Monte Carlo of the sweep
+  ``contact-monte-carlo`` (:mod:`bounce.sweeps.contact_monte_carlo`, its own rules);
+  :func:`monte_carlo_summary` reads its gathered file for the claims.
 * :func:`construct_contact`: a start state that reaches a prescribed contact (sticky onset, grazing or
   a slow impact) after a time T, evolved backward in :mod:`bounce.reference` (mpmath).
 * :func:`minimum_sticky_energy`: the numerical minimum of E - E_m over the anomalous states, the
@@ -24,9 +25,9 @@ from scipy.optimize import minimize
 from . import reference
 from .events import IMPACT, TANGENT_ACC, TANGENT_JERK, energy_excess, rounding_level
 from .flight import gap
-from .model import Deviations, Parameters
+from .model import Deviations
 from .oscillator import make_oscillator
-from .simulate import simulate
+from .fitting import tail_exponent
 from .theory import contact_derivatives
 
 
@@ -85,45 +86,48 @@ def _contact_scales(x0, u0, a0, eta0, tau, u, a, eta, kind, gamma, mu, params, c
         launch = abs(u[n])
 
 
-def monte_carlo(spec: dict) -> dict:
-    """Run the Monte-Carlo sample (spec: seed, n_samples, events, tail and the ranges of
-    :func:`sample_initial`); per-sample summaries plus the pooled low tails of both ratios."""
-    rng = np.random.default_rng(int(spec["seed"]))
-    n = int(spec["n_samples"])
-    events = int(spec["events"])
-    k = int(spec["tail"])
-    gamma, mu, regime, dE, x, u, a, eta = sample_initial(rng, n, spec)
-    counts = np.zeros((n, 4), dtype=np.int64)
-    min_ratio = np.full(n, np.nan)
-    min_ratio_at = np.full(n, -1, dtype=np.int64)
-    min_margin = np.full(n, np.nan)
-    min_margin_at = np.full(n, -1, dtype=np.int64)
-    pooled_ratio, pooled_margin = [], []
-    n_contacts = 0
-    for i in range(n):
-        p = Parameters(gamma[i], mu[i])
-        tr = simulate(p, Deviations(x[i], u[i], a[i], eta[i]), max_events=events)
-        counts[i] = np.bincount(tr.kind, minlength=4)[:4]
-        params, coefs = make_oscillator(mu[i])
-        ref = np.empty(len(tr))
-        mar = np.empty(len(tr))
-        _contact_scales(x[i], u[i], a[i], eta[i], tr.tau, tr.xdot, tr.xidot, tr.eta, tr.kind,
-                        gamma[i], mu[i], params, coefs, ref, mar)
-        ok = np.isfinite(ref)
-        n_contacts += int(ok.sum())
-        if ok.any():
-            j = int(np.nanargmin(ref))
-            min_ratio[i], min_ratio_at[i] = ref[j], j
-            j = int(np.nanargmin(mar))
-            min_margin[i], min_margin_at[i] = mar[j], j
-            pooled_ratio.append(np.sort(ref[ok])[:k])
-            pooled_margin.append(np.sort(mar[ok])[:k])
-    tail_ratio = np.sort(np.concatenate(pooled_ratio))[:k]
-    tail_margin = np.sort(np.concatenate(pooled_margin))[:k]
-    return dict(gamma=gamma, mu=mu, regime=regime, dE=dE, x=x, u=u, a=a, eta=eta, counts=counts,
-                min_ratio=min_ratio, min_ratio_at=min_ratio_at, min_margin=min_margin,
-                min_margin_at=min_margin_at, tail_ratio=tail_ratio, tail_margin=tail_margin,
-                n_contacts=n_contacts)
+def binned_tail(hist: np.ndarray, edges: np.ndarray, k: int, edge: str = "upper") -> np.ndarray:
+    """The k smallest values of a histogrammed sample, each at an edge of its bin (ranked; pooled over the
+    leading axes of ``hist``).
+
+    ``upper``: N(< edge) is then exact at every upper bin edge (the empirical CDF at the edges), for tail
+    fits; ``lower``: every value is underestimated, so k / value over-estimates a count extrapolated linearly.
+    """
+    counts = hist.reshape(-1, hist.shape[-1]).sum(axis=0)
+    at = edges[1:] if edge == "upper" else edges[:-1]
+    return np.repeat(at, counts)[:k]
+
+
+def binned_tail_exponent(hist: np.ndarray, edges: np.ndarray, lo: int, hi: int) -> tuple[float, float, float]:
+    """N(< r) = C r^p (:func:`bounce.fitting.tail_exponent`) through the empirical CDF of a histogrammed sample at
+    its upper bin edges (exact there), from the last edge with at most ``lo`` values below it to the first with at
+    least ``hi``; pooled over the leading axes of ``hist``.  (p, its std. error, C); nan if fewer than two edges."""
+    counts = hist.reshape(-1, hist.shape[-1]).sum(axis=0)
+    below = np.cumsum(counts)[counts > 0]
+    at = edges[1:][counts > 0]
+    i0 = max(int(np.searchsorted(below, lo, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(below, hi)), below.size - 1)
+    below, at = below[i0:i1 + 1], at[i0:i1 + 1]
+    if below.size < 2:
+        return math.nan, math.nan, math.nan
+    ranked = np.zeros(int(below[-1]))  # rank k -> value; zeros (no CDF point there) are skipped by the fit
+    ranked[below - 1] = at
+    return tail_exponent(ranked, int(below[0]), int(below[-1]))
+
+
+def monte_carlo_summary(ds, k: int) -> dict:
+    """The Monte Carlo of the gathered sweep ``contact-monte-carlo`` (its file, read as a declared input):
+    per sample gamma, mu, regime, E - E_m, event counts per kind and the smallest speed ratio and classifier
+    margin; the pooled low tails of both (:func:`binned_tail`, k values) and the number of impacts."""
+    return dict(
+        gamma=ds["gamma"].values, mu=ds["mu"].values, regime=ds["damping_regime"].values, dE=ds["energy"].values,
+        counts=ds["counts"].values, min_ratio=ds["min_ratio"].values, min_margin=ds["min_margin"].values,
+        tail_ratio=binned_tail(ds["ratio_hist"].values, ds["ratio_edges"].values, k),
+        tail_margin=binned_tail(ds["margin_hist"].values, ds["margin_edges"].values, k),
+        tail_margin_lower=binned_tail(ds["margin_hist"].values, ds["margin_edges"].values, k, "lower"),
+        **{v: ds[v].values for v in ("ratio_hist", "ratio_edges", "margin_hist", "margin_edges")},
+        n_contacts=int(ds["ratio_hist"].values.sum()), seed=int(ds.attrs["seed"]), events=int(ds.attrs["events"]),
+        bin_width=float(np.log10(ds["ratio_edges"].values[2] / ds["ratio_edges"].values[1])))
 
 
 # --------------------------------------------------------------------------- constructions

@@ -4,7 +4,8 @@ CLAIM_ID is ``group/claim`` (e.g. ``static-equilibrium/energy-limit``) or a whol
 The group's config slice is read from ``--config`` (default ``config/config.yaml``, with
 ``--configfile`` overlays as in Snakemake), validated against ``config/schema.yaml`` with its
 defaults applied (as the pipeline does), and its input datasets are read from ``--data``
-(default ``results/data``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
+(default ``results/data``; a sweep's gathered file from ``results/sweeps``, the group's experiments from
+``results/data/checks/<group>/``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
 Prints one line per verdict row; exit status 0 if no row is ``not reproduced`` unexpectedly
 (a claim with a ``known_failure`` is expected to be not reproduced), 1 otherwise, 2 on bad input.
 """
@@ -62,22 +63,8 @@ def load_config(paths: list[str], schema_path: str) -> dict:
     return apply_defaults(config, yaml.safe_load(Path(schema_path).read_text()))
 
 
-def dataset_paths(name: str, config: dict, data_dir: str) -> list[Path]:
-    """Files of one declared input: ``sticky-runs`` is the eps = 0 run and the eps_convergence runs of
-    config ``sticky`` (as workflow/rules/checks.smk), ``sweep-<name>`` the gathered sweep results/sweeps/<name>.nc
-    (next to the data directory), any other name results/data/<name>.nc."""
-    from .config import SWEEP_INPUT_PREFIX
-
-    if name.startswith(SWEEP_INPUT_PREFIX):
-        return [Path(data_dir).parent / "sweeps" / f"{name[len(SWEEP_INPUT_PREFIX):]}.nc"]
-    if name == "sticky-runs":
-        eps = [0.0] + [float(e) for e in config["sticky"]["eps_convergence"] if float(e) != 0.0]
-        return [Path(data_dir) / "sticky" / f"eps{e:g}.nc" for e in eps]
-    return [Path(data_dir) / f"{name}.nc"]
-
-
 def main(argv=None) -> int:
-    from .checks import registry
+    from .checks import input_files, registry
     from .io import read_dataset
 
     parser = argparse.ArgumentParser(prog="python -m bounce check", description=__doc__.splitlines()[0])
@@ -112,7 +99,8 @@ def main(argv=None) -> int:
         print(f"error: config {where}: {exc.message}", file=sys.stderr)
         return 2
     spec = config["checks"][name]
-    paths = [p for scene in spec["inputs"] for p in dataset_paths(scene, config, args.data)]
+    # the files the rule check reads: datasets under --data, sweeps' gathered files beside it
+    paths = [Path(p) for p in input_files(name, config, args.data, str(Path(args.data).parent / "sweeps"))]
     missing = [str(p) for p in paths if not p.exists()]
     if missing:
         print(f"error: input datasets missing: {', '.join(missing)} (run the pipeline first)", file=sys.stderr)

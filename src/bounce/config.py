@@ -33,8 +33,6 @@ SCHEMA = Path(__file__).resolve().parents[2] / "config" / "schema.yaml"
 #: results/data/sticky/); a scene may take none of these names, nor `sticky` (that folder)
 DERIVED_DATASETS = ("sticky-runs", "sticky-convergence", "sticky-inference")
 RESERVED_SCENE_NAMES = DERIVED_DATASETS + ("sticky",)
-#: a check input named sweep-<name> is the gathered file of sweep <name> (results/sweeps/<name>.nc)
-SWEEP_INPUT_PREFIX = "sweep-"
 
 
 class ConfigError(InputError):
@@ -119,9 +117,9 @@ def _check_scenes(config: dict) -> None:
     for section, scenes in (("scenes", config.get("scenes", {})),
                             ("methods.scenes", config.get("methods", {}).get("scenes", {}))):
         for name, spec in scenes.items():
-            if section == "scenes" and (name in RESERVED_SCENE_NAMES or name.startswith(SWEEP_INPUT_PREFIX)):
+            if section == "scenes" and (name in RESERVED_SCENE_NAMES or name in config.get("sweeps", {})):
                 raise ConfigError(f"scenes.{name}: the name is taken by a derived dataset "
-                                  f"({', '.join(RESERVED_SCENE_NAMES)}, {SWEEP_INPUT_PREFIX}<sweep>); choose another")
+                                  f"({', '.join(RESERVED_SCENE_NAMES)} or a sweep's gathered file); choose another")
             try:
                 params = scene_parameters(spec)
                 scene_initial(spec, params)
@@ -132,7 +130,7 @@ def _check_scenes(config: dict) -> None:
 def _check_references(config: dict) -> None:
     """Every name a figure, study or check uses must be a dataset some rule produces."""
     scenes = set(config.get("scenes", {}))
-    datasets = scenes | set(DERIVED_DATASETS) | {SWEEP_INPUT_PREFIX + name for name in config.get("sweeps", {})}
+    datasets = scenes | set(DERIVED_DATASETS) | set(config.get("sweeps", {}))  # a sweep: its gathered file
 
     def need(where: str, name: str, pool: set, what: str) -> None:
         if name not in pool:

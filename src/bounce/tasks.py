@@ -50,6 +50,19 @@ def _check(args) -> None:
     check.plot(ds, args.spec, args.out[1:])
 
 
+def _check_experiment(args) -> None:
+    """One long simulation of a claim group (``--experiment NAME``), from the config keys it declares."""
+    from . import __version__
+    from .checks import registry
+    from .io import git_info
+
+    ds = registry()[args.name].experiment(args.experiment).dataset(args.spec)
+    commit, dirty = git_info()
+    ds.attrs.update({"Conventions": "CF-1.10", "source": f"bounce {__version__}", "git_commit": commit,
+                     "git_dirty": dirty, "check": args.name, "config": json.dumps(args.spec, sort_keys=True)})
+    write_netcdf(ds, args.out[0])
+
+
 def _report(args) -> None:
     """Gather every check into results/report/validation.{md,html}."""
     from . import __version__
@@ -129,6 +142,7 @@ TASKS = {
     "sticky-convergence": _sticky_convergence,
     "figure": _figure,
     "check": _check,
+    "check-experiment": _check_experiment,
     "report": _report,
     "study": _study,
     "thumbnails": _thumbnails,
@@ -146,6 +160,7 @@ def main(argv=None) -> int:
     parser.add_argument("--spec", type=json.loads, default={}, help="the config slice, as JSON")
     parser.add_argument("--inputs", nargs="*", default=[], help="input netCDF files")
     parser.add_argument("--out", nargs="+", required=True, help="output file(s)")
+    parser.add_argument("--experiment", default="", help="experiment of a claim group (check-experiment)")
     parser.add_argument("--shard", type=int, default=0, help="sweep shard index (0-based)")
     parser.add_argument("--workers", type=int, default=1, help="worker processes (the job's cores)")
     args = parser.parse_args(argv)

@@ -1,19 +1,40 @@
 """Stage 4: every checkable claim of the paper, one claim group per rule -> results/checks/<name>.nc
 (numbers and verdicts) + fig-<name>.{png,pdf}; then the validation report.  A group reads only the
-datasets it declares (config `checks.<name>.inputs`)."""
+datasets it declares (config `checks.<name>.inputs`: scenes, the sticky runs, sweeps' gathered files)
+and its own experiments (bounce.checks.base.Experiment: its long simulations, one rule each)."""
+
+from bounce.checks import input_files as check_input_files
+from bounce.checks import registry as check_registry
+
+CHECK_GROUPS = check_registry()
 
 
-#: named groups of datasets a claim group may list in its `inputs` (every other name is results/data/<name>.nc)
-DATASET_GROUPS = {"sticky-runs": STICKY_CONV}
-# a check may read a sweep's gathered file as input `sweep-<name>` (bounce.config.SWEEP_INPUT_PREFIX)
-DATASET_GROUPS.update({f"sweep-{name}": [f"results/sweeps/{name}.nc"] for name in config.get("sweeps", {})})
+rule check_experiment:
+    """A long simulation of a claim group (bounce.checks.base.Experiment), from the config keys it declares."""
+    output:
+        "results/data/checks/{name}/{experiment}.nc",
+    params:
+        spec=lambda w: as_json(CHECK_GROUPS[w.name].experiment(w.experiment).spec(config["checks"][w.name])),
+    resources:
+        mem_mb=2000,
+        runtime=60,
+    log:
+        "results/logs/checks/{name}/{experiment}.log",
+    benchmark:
+        "results/timing/checks/{name}/{experiment}.tsv"
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in CHECKS),
+        experiment="[a-z0-9][a-z0-9-]*",
+    shell:
+        "python -m bounce.tasks check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
+        "--spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
 rule check:
-    """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)."""
+    """Run one claim group of config `checks` on the datasets it declares (config `checks.<name>.inputs`, in order)
+    and on its experiments."""
     input:
-        lambda w: [f for name in config["checks"][w.name]["inputs"]
-                   for f in DATASET_GROUPS.get(name, [f"results/data/{name}.nc"])],
+        lambda w: check_input_files(w.name, config),
     output:
         nc="results/checks/{name}.nc",
         png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),

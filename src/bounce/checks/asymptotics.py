@@ -64,11 +64,11 @@ import xarray as xr
 
 from ..events import IMPACT
 from ..fitting import fit_limit, log_select, transient_length
-from ..model import Deviations, Parameters, State
+from ..model import Deviations, Parameters
 from ..simulate import simulate
 from .. import theory
 from ..theory import contact_derivatives, correction_exponent
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
+from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, split_inputs
 
 NAME = "main-theorem"
 
@@ -167,31 +167,6 @@ def series_quantities(s: dict) -> dict:
 
 # --------------------------------------------------------------------------- run
 
-def _atlas(spec: dict) -> dict:
-    a = spec["atlas"]
-    mus, gammas = [float(m) for m in a["mu"]], [float(g) for g in a["gamma"]]
-    shape = (len(mus), len(gammas), len(QUANTITIES))
-    res = {key: np.full(shape, np.nan) for key in
-           ("limit", "limit_err", "rms", "n_lo", "exponent", "exponent_err", "exponent_theory", "transient")}
-    n_plot = np.unique(np.geomspace(1, int(a["events"]) - 1, int(spec["plot_points"])).astype(np.int64)).astype(float)
-    curves = np.full((len(mus), len(gammas), n_plot.size), np.nan)
-    for i, mu in enumerate(mus):
-        for j, gamma in enumerate(gammas):
-            traj = simulate(Parameters(gamma, mu), State.from_psi_xi(float(a["psi0"]), 0.0, 0.0, 0.0),
-                            max_events=int(a["events"]))
-            s = trajectory_series(traj)
-            qs = series_quantities(s)
-            for m, name in enumerate(QUANTITIES):
-                f = fit_limit(s["n"], s["t"], qs[name], mu, spec["fit"])
-                for key in ("limit", "limit_err", "rms", "n_lo", "exponent", "exponent_err", "exponent_theory"):
-                    res[key][i, j, m] = f[key]
-                res["transient"][i, j, m] = transient_length(s["n"], qs[name], spec["transient"])
-            pos = np.clip(np.searchsorted(s["n"], n_plot), 0, s["n"].size - 1)
-            curves[i, j] = np.where(s["n"][pos] == n_plot, qs["tau"][pos], np.nan)
-            del traj, s, qs
-    return {"mu": mus, "gamma": gammas, "res": res, "curves": curves, "n_plot": n_plot}
-
-
 def _fmt(x, spec=".3g"):
     return "nan" if not np.isfinite(x) else format(x, spec)
 
@@ -218,12 +193,19 @@ def _limit_verdict(label, ref, claim_text, fit, cfg, context):
                    judge(abs(L - 1.0) <= tol))
 
 
+ATLAS = "asymptotic-atlas"  # the sweep whose gathered file holds the atlas (config sweeps.asymptotic-atlas)
+ATLAS_KEYS = ("limit", "limit_err", "exponent", "exponent_err", "transient")
+
+
 class Measurements:
-    """Per-scene fits (computed on construction) and the atlas (its own 1e6-event runs, on first use)."""
+    """Per-scene fits (computed on construction) and the atlas: the fits of the sweep ``asymptotic-atlas``
+    (its gathered file, a declared input; none declared: no atlas rows)."""
 
     def __init__(self, spec: dict, inputs: list):
         self.spec = spec
-        self.scenes = [self._scene(i, ds) for i, ds in enumerate(inputs)]
+        scenes, named = split_inputs(inputs)
+        self.scenes = [self._scene(i, ds) for i, ds in enumerate(scenes)]
+        self.atlas_dataset = named.get(ATLAS)
 
     def _scene(self, i: int, ds: xr.Dataset) -> SimpleNamespace:
         s = dataset_series(ds)
@@ -241,7 +223,17 @@ class Measurements:
 
     @cached_property
     def atlas(self):
-        return _atlas(self.spec) if self.spec["atlas"] else None
+        """mu, gamma of the cells and res[key] on (mu, gamma, quantity) in the order of QUANTITIES."""
+        ds = self.atlas_dataset
+        if ds is None:
+            return None
+        sel = ds.sel(quantity=list(QUANTITIES))
+        res = {key: sel[key].transpose("mu", "gamma", "quantity").values for key in ATLAS_KEYS}
+        mus = ds["mu"].values
+        res["exponent_theory"] = np.broadcast_to(
+            np.array([correction_exponent(float(m)) for m in mus])[:, None, None], res["limit"].shape).copy()
+        return {"mu": [float(m) for m in mus], "gamma": [float(g) for g in ds["gamma"].values], "res": res,
+                "psi0": float(ds.attrs["psi0"]), "events": int(ds.attrs["events"])}
 
     @cached_property
     def data(self) -> xr.Dataset:
@@ -424,8 +416,9 @@ def _atlas_limit_claim(q: str):
                     if nfit else "no cell fitted")
         return {None: Verdict(
             f"{claim_text} for every (gamma, mu) of the atlas", ref,
-            f"atlas mu in {atlas['mu']} x gamma in {atlas['gamma']}, psi(0) = {spec['atlas']['psi0']}, "
-            f"{spec['atlas']['events']} impacts each; same fit as for the scenes",
+            f"atlas (sweep {ATLAS}) mu in {[float(f'{v:.4g}') for v in atlas['mu']]} x gamma in "
+            f"{[float(f'{v:.4g}') for v in atlas['gamma']]}, psi(0) = {atlas['psi0']:g}, {atlas['events']} events each; "
+            "same fit as for the scenes",
             "L = 1 in every cell", measured,
             f"|L - 1| <= max({k:g} x fit error, {floor:g}) in every fitted cell; unfitted cells (no decade "
             f"after the transient, or fit error > {spec['err_max']:g}) make the row not checkable",
@@ -518,19 +511,15 @@ def _dataset(m: Measurements, spec: dict) -> xr.Dataset:
     if atlas is not None:
         data = data.assign_coords(
             atlas_mu=("atlas_mu", np.array(atlas["mu"]), {"long_name": "mu of the atlas cell", "units": "1"}),
-            atlas_gamma=("atlas_gamma", np.array(atlas["gamma"]), {"long_name": "gamma of the atlas cell", "units": "1"}),
-            atlas_n=("atlas_n", atlas["n_plot"], {"long_name": "impact index n of the atlas curves", "units": "1"}))
+            atlas_gamma=("atlas_gamma", np.array(atlas["gamma"]), {"long_name": "gamma of the atlas cell", "units": "1"}))
         for key, ln in (("limit", "fitted limit L of q_n"), ("limit_err", "error estimate of L"),
-                        ("rms", "rms residual of the limit fit"), ("n_lo", "first impact of the fit window"),
                         ("exponent", "fitted decay exponent p of q_n - L"), ("exponent_err", "error estimate of p"),
                         ("exponent_theory", "predicted decay exponent"),
                         ("transient", f"first n after which |q_n - 1| < {spec['transient']:g} for good")):
             data[f"atlas_{key}"] = (("atlas_mu", "atlas_gamma", "quantity"), atlas["res"][key],
                                     {"long_name": ln, "units": "1"})
-        data["atlas_tau_curve"] = (("atlas_mu", "atlas_gamma", "atlas_n"), atlas["curves"],
-                                   {"long_name": "n tau_n mu/3 in the atlas cell", "units": "1"})
-        data.attrs["atlas_psi0"] = float(spec["atlas"]["psi0"])
-        data.attrs["atlas_events"] = int(spec["atlas"]["events"])
+        data.attrs["atlas_psi0"] = atlas["psi0"]
+        data.attrs["atlas_events"] = atlas["events"]
     data.attrs["check"] = NAME
     return data
 
@@ -555,25 +544,21 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                           label=QUANTITY_LABELS[qn] if i == 0 else None)
     if "atlas_mu" in ds.coords:
         mus, gammas = ds["atlas_mu"].values, ds["atlas_gamma"].values
-        nn = ds["atlas_n"].values
-        cmap = plt.get_cmap("viridis")
-        for i, mu in enumerate(mus):
-            col = cmap(i / max(len(mus) - 1, 1))
-            for j in range(len(gammas)):
-                a1.loglog(nn, np.abs(ds["atlas_tau_curve"].values[i, j] - 1), color=col, lw=0.5, alpha=0.6,
-                          label=r"atlas $\mu=%g$" % mu if j == 0 else None)
         mk = ["o", "s", "^", "v", "D"]
         tq = QUANTITIES.index("tau")
         for j, g in enumerate(gammas):
             tr = ds["atlas_transient"].values[:, j, tq]
-            a3.loglog(mus, tr, marker=mk[j % 5], ls="-", label=r"$\gamma=%g$" % g)
+            a3.loglog(mus, tr, marker=mk[j % 5], ls="-", label=r"$\gamma=%.3g$" % g)
             p = ds["atlas_exponent"].values[:, j, tq]
             pe = ds["atlas_exponent_err"].values[:, j, tq]
             a4.errorbar(mus * (1 + 0.04 * (j - 1)), p, yerr=pe, marker=mk[j % 5], ls="none", ms=4,
-                        capsize=2, label=r"fit, $\gamma=%g$" % g)
+                        capsize=2, label=r"fit, $\gamma=%.3g$" % g)
         mm = np.geomspace(min(mus.min(), 0.01), max(mus.max(), 5.0), 300)
         a4.semilogx(mm, [correction_exponent(x) for x in mm], "k-", lw=0.8,
                     label=r"theory $\min(1, 3\lambda/\mu)$")
+        from matplotlib.ticker import NullFormatter
+
+        a3.xaxis.set_minor_formatter(NullFormatter())  # minor labels of a short log axis overlap
         a3.set_xlabel(r"$\mu$")
         a3.set_ylabel(r"transient $n_{10\%}$ of $n\tau_n\mu/3$")
         a3.set_title(r"(c) atlas: impacts before $|n\tau_n\mu/3-1|<10\%$ for good", fontsize=8)

@@ -27,6 +27,22 @@ A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
 No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.theory`,
 fitting in :mod:`bounce.fitting`, mpmath in :mod:`bounce.reference`, experiments shared by several
 claim groups in :mod:`bounce.anomalies`.
+
+Every experiment is in the graph (the probe budget).  A claim group simulates nothing long itself:
+
+* a scene it reads is named in config ``checks.<name>.inputs`` (``results/data/<scene>.nc``), and so is a
+  sweep's gathered file (``results/sweeps/<sweep>.nc``, config ``sweeps``);
+* a long simulation of its own (a Monte Carlo, runs followed to rest, a long asymptotic run) is an
+  :class:`Experiment` in ``Check.experiments``: run by the rule ``check_experiment`` of
+  workflow/rules/checks.smk into ``results/data/checks/<name>/<experiment>.nc`` from the config keys it
+  declares (so a config edit reruns exactly it), and read by ``measure`` like any other input;
+* inside a claim only *probes* remain: constructed states followed for at most :data:`PROBE_EVENTS`
+  events per :func:`bounce.simulate.simulate` call (a classifier probe, one sticky phase, the restart of
+  a thinned record).  tests/test_claims.py::test_probe_budget counts the events of every call of every
+  group on small inputs and fails above the budget.
+
+``measure`` tells its inputs apart with :func:`split_inputs`: scenes in declared order, the others by the
+name in their attributes (``sweep`` or ``experiment``).
 """
 
 from __future__ import annotations
@@ -102,15 +118,57 @@ def recorded(registry: list, id: str, kind: str, subject: str, known_failure: st
     registry.append(Claim(id, kind, subject, from_measurement, known_failure))
 
 
+#: the most events one simulate() call inside a claim may follow (a constructed probe); longer runs are
+#: experiments or scenes, produced by a rule (see the module docstring)
+PROBE_EVENTS = 20
+
+
+@dataclass(frozen=True)
+class Experiment:
+    """A long simulation of a claim group, produced by its own rule as netCDF and read back by ``measure``.
+
+    ``run(spec)`` gets the group's config slice restricted to ``keys`` and returns the dataset (its
+    attribute ``experiment`` names it, see :func:`split_inputs`)."""
+
+    name: str
+    keys: tuple
+    run: Callable
+
+    def spec(self, group_spec: dict) -> dict:
+        """The part of the group's config slice this experiment depends on."""
+        return {k: group_spec[k] for k in self.keys}
+
+    def dataset(self, group_spec: dict) -> xr.Dataset:
+        ds = self.run(self.spec(group_spec))
+        ds.attrs["experiment"] = self.name
+        return ds
+
+
+def split_inputs(inputs) -> tuple[list, dict]:
+    """(scene datasets in declared order, {name: dataset} of sweeps' gathered files and experiments)."""
+    scenes, named = [], {}
+    for ds in inputs:
+        key = ds.attrs.get("experiment") or ds.attrs.get("sweep")
+        if key:
+            named[str(key)] = ds
+        else:
+            scenes.append(ds)
+    return scenes, named
+
+
 @dataclass(frozen=True)
 class Check:
-    """A claim group: its measurements, its claims in order, its figure."""
+    """A claim group: its measurements, its claims in order, its figure, the experiments it reads."""
 
     name: str
     measure: Callable
     claims: tuple
     plot: Callable
     title: str = ""
+    experiments: tuple = ()
+
+    def experiment(self, name: str) -> Experiment:
+        return next(e for e in self.experiments if e.name == name)
 
     def claim_ids(self) -> list[str]:
         return [f"{self.name}/{c.id}" for c in self.claims]

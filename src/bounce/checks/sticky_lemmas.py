@@ -20,28 +20,35 @@ to produce the "measured" numbers):
   mu >= sqrt(2) (S > 0 for all t) eps* = inf, and for mu = 0 eps* = 0.  As alpha -> inf
   the detach time decreases to the first zero of S, pi/omega_s with omega_s =
   sqrt(1/2 - mu^2/4): the infimum of the duration (Lemma td-ts-bound).
+
+One shared measurement (:class:`Measurements`, each section computed on first use) and one small
+function per claim in ``CLAIMS``.  The long runs are inputs: the Monte Carlo is the sweep
+``contact-monte-carlo``, eq. sticky-ic followed to the horizon the experiment ``sticky-ic-family``;
+the claims themselves only probe constructed states (a few events each, checks/base.py).
 """
 
 from __future__ import annotations
 
 import math
+from functools import cached_property
 from types import SimpleNamespace
 
 import numpy as np
 import xarray as xr
 from mpmath import mp
 
-from ..anomalies import construct_contact, minimum_sticky_energy, monte_carlo
+from ..anomalies import construct_contact, minimum_sticky_energy
 from ..events import DETACH, GRAZING, STICKY_START, XN_ULPS, contact_window, energy_excess
 from ..flight import EPS
 from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import SQRT2, eps_star, sticky_duration_infimum, sticky_fundamental, sticky_onset
-from .base import BEYOND, PAPER, Check, Verdict, claim, judge, recorded, variable
+from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, split_inputs, variable
 
 NAME = "sticky-lemmas"
-
+MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
+FAMILY_KEYS = ("sticky_ic_params", "sticky_ic_eps", "horizon", "horizon_events")
 
 
 def onset(gamma: float, mu: float, alpha: float) -> Deviations:
@@ -60,217 +67,323 @@ def sticky_run(gamma, mu, alpha, t_max=math.inf):
     return math.inf, math.nan, tr
 
 
-# --------------------------------------------------------------------------- run
+def sticky_ic_family(spec: dict) -> xr.Dataset:
+    """Experiment ``sticky-ic-family``: eq. sticky-ic for every eps of ``sticky_ic_eps`` (gamma, mu =
+    ``sticky_ic_params``) followed to t = ``horizon`` (at most ``horizon_events`` events): its sticky onsets,
+    the end of its last sticky phase and why the run stopped."""
+    g, m = map(float, spec["sticky_ic_params"])
+    p = Parameters(g, m)
+    counts, last_end, stops = [], [], []
+    for e in (float(v) for v in spec["sticky_ic_eps"]):
+        tr = simulate(p, State.sticky_ic(p, eps=e), max_events=int(spec["horizon_events"]), t_max=float(spec["horizon"]))
+        st = np.flatnonzero(tr.kind == STICKY_START)
+        det = np.flatnonzero(tr.kind == DETACH)
+        counts.append(int(st.size))
+        last_end.append(float(tr.t[det[-1]]) if det.size else (math.inf if st.size else math.nan))
+        stops.append(tr.stop_reason)
+    return xr.Dataset({
+        "eps": variable("run", np.array(spec["sticky_ic_eps"], dtype=float), "eps of eq. sticky-ic"),
+        "sticky_count": variable("run", np.array(counts, dtype=np.int64), "sticky onsets up to the horizon"),
+        "last_sticky_end": variable("run", np.array(last_end), "end of the last sticky phase",
+                                    comment="inf: it never ends; nan: no sticky phase"),
+        "stop_reason": variable("run", np.array(stops, dtype=object), "why the run stopped"),
+    }, attrs={"title": "eq. sticky-ic followed to the horizon (Theorem Finite-number-sticky-ev)", "gamma": g, "mu": m,
+              "horizon": float(spec["horizon"])})
 
-def measure(spec: dict, inputs=()) -> SimpleNamespace:
-    """Every section's numbers and its verdict rows, recorded under their claim ids (see CLAIMS)."""
-    pairs = [tuple(map(float, p)) for p in spec["params"]]
-    rows: dict[str, Verdict] = {}
-    P = len(pairs)
 
-    # ---- (a) Lemma Min-sticky-energy
-    e_num = np.empty(P)
-    yd_num = np.empty(P)
-    z_num = np.empty(P)
-    acc_num = np.empty(P)
-    e_grid = np.empty(P)
-    for k, (g, m) in enumerate(pairs):
-        e_num[k], yd_num[k], z_num[k], acc_num[k], e_grid[k] = minimum_sticky_energy(g, m, int(spec["grid"]))
-    gam = np.array([p[0] for p in pairs])
-    mus = np.array([p[1] for p in pairs])
-    e_formula = (3 - 2 * mus**2) * gam**2 / (2 * (1 + 2 * mus**2))  # eq. min-sticky-energy (absolute E)
-    e_num_abs = e_num - gam**2 / 2
-    yd_formula = 4 * gam * mus / (1 + 2 * mus**2)
-    z_formula = 4 * gam / (1 + 2 * mus**2)
-    rel_e = np.abs(e_num_abs - e_formula) / (e_formula + gam**2 / 2)
-    rel_yd = np.abs(yd_num - yd_formula) / (4 * gam)
-    rel_z = np.abs(z_num - z_formula) / (4 * gam)
+# --------------------------------------------------------------------------- the shared measurement
+
+class Measurements:
+    """The group's one measurement, section by section, each computed on first use (one claim runs only what it
+    reads): (a) the numerical minimum of E over the anomalous states and constructed contacts near it, (b) sticky
+    durations over alpha_s and the onset expansion, (c) the threshold eps* and its ends, (d) the sticky-ic family
+    (experiment sticky-ic-family) and the Monte Carlo (sweep contact-monte-carlo)."""
+
+    def __init__(self, spec: dict, inputs=()):
+        self.spec = spec
+        _, self.named = split_inputs(inputs)
+        self.pairs = [tuple(map(float, p)) for p in spec["params"]]
+        self.gam = np.array([p[0] for p in self.pairs])
+        self.mus = np.array([p[1] for p in self.pairs])
+
+    @cached_property
+    def minimum(self) -> SimpleNamespace:
+        """(a) numerical minimum of E - E_m over {x = xdot = 0, x'' >= 0} per (gamma, mu) and the formulas."""
+        rows = np.array([minimum_sticky_energy(g, m, int(self.spec["grid"])) for g, m in self.pairs])
+        e_num, yd_num, z_num, acc_num, e_grid = rows.T
+        gam, mus = self.gam, self.mus
+        e_formula = (3 - 2 * mus**2) * gam**2 / (2 * (1 + 2 * mus**2))  # eq. min-sticky-energy (absolute E)
+        e_num_abs = e_num - gam**2 / 2
+        yd_formula = 4 * gam * mus / (1 + 2 * mus**2)
+        z_formula = 4 * gam / (1 + 2 * mus**2)
+        return SimpleNamespace(
+            e_num_abs=e_num_abs, e_formula=e_formula, e_grid_abs=e_grid - gam**2 / 2, yd_num=yd_num, z_num=z_num,
+            acc_num=acc_num, yd_formula=yd_formula,
+            rel_e=np.abs(e_num_abs - e_formula) / (e_formula + gam**2 / 2),
+            rel_yd=np.abs(yd_num - yd_formula) / (4 * gam), rel_z=np.abs(z_num - z_formula) / (4 * gam))
+
+    @cached_property
+    def constructions(self) -> SimpleNamespace:
+        """(a) states constructed to reach sticky/grazing contacts near the minimiser, via the dynamics (probes)."""
+        c_pairs = [tuple(map(float, p)) for p in self.spec["construct_params"]]
+        factors = np.array(self.spec["construct_factors"])
+        excess = np.full((len(c_pairs), factors.size, 2), np.nan)  # (E - E_min)/gamma^2 at the event: [sticky, grazing]
+        kind = np.full((len(c_pairs), factors.size, 2), -1, dtype=np.int8)
+        drift = np.full((len(c_pairs), factors.size), np.nan)
+        graze_margin = np.full((len(c_pairs), factors.size), np.nan)
+        for k, (g, m) in enumerate(c_pairs):
+            alpha_star = 8 * g * m**3 / (1 + 2 * m * m)  # 4 gamma mu - Ydot_min (eq. ydot-min-Esticky)
+            emin_excess = 2 * g * g / (1 + 2 * m * m)  # E_min - E_m
+            for j, f in enumerate(factors):
+                alpha = f * alpha_star
+                with mp.workdps(40):
+                    a, eta = sticky_onset(mp.mpf(g), mp.mpf(m), mp.mpf(alpha))
+                start, T, *_ = construct_contact(g, m, a, eta, 0, min(0.25 * 2 * alpha / g, 1.0))
+                tr = simulate(Parameters(g, m), start, max_events=1)
+                kind[k, j, 0] = tr.kind[0]
+                excess[k, j, 0] = (tr.energy_excess[0] - emin_excess) / g**2
+                # the classifier records the onset up to its window delta3 early; the energy there exceeds E(t_s)
+                # by the dissipation 2 mu xi'^2 (T - t_1) (eq. energy-dissipation)
+                drift[k, j] = 2 * m * float(tr.xidot[0]) ** 2 * (T - float(tr.t[0])) / g**2
+                with mp.workdps(40):  # grazing: x'' = 1e-2 gamma above the sticky line
+                    eta_g = eta + mp.mpf(1e-2 * g)
+                start, T, acc, jerk, scale = construct_contact(g, m, a, eta_g, 0, 0.5)
+                # the classifier takes x'' <= 4 |x'''| delta3 for zero (a sticky onset): keep far from that
+                graze_margin[k, j] = acc / (4 * abs(jerk) * contact_window(scale, acc, jerk)[3])
+                tr = simulate(Parameters(g, m), start, max_events=1)
+                kind[k, j, 1] = tr.kind[0]
+                excess[k, j, 1] = (tr.energy_excess[0] - emin_excess) / g**2
+        return SimpleNamespace(pairs=c_pairs, factors=factors, excess=excess, kind=kind, drift=drift,
+                               graze_margin=graze_margin)
+
+    @cached_property
+    def mc(self) -> xr.Dataset:
+        """(a, d) the Monte Carlo: the gathered file of the sweep contact-monte-carlo."""
+        return self.named[MONTE_CARLO]
+
+    @cached_property
+    def durations(self) -> SimpleNamespace:
+        """(b) sticky phases from the sticky line over n_alpha alpha_s from eps* to alpha_max gamma (probes)."""
+        n_alpha, P = int(self.spec["n_alpha"]), len(self.pairs)
+        alpha_max = float(self.spec["alpha_max_over_gamma"])
+        durations = np.full((P, n_alpha), np.inf)
+        dissipated = np.full((P, n_alpha), np.nan)
+        alphas = np.empty((P, n_alpha))
+        eps_cf, t_star = np.empty(P), np.empty(P)
+        for k, (g, m) in enumerate(self.pairs):
+            eps_cf[k], t_star[k] = eps_star(g, m)
+            lo = eps_cf[k] * (1 + 1e-6) if 0 < eps_cf[k] < math.inf else 1e-6 * g
+            alphas[k] = np.geomspace(lo, max(alpha_max * g, 10 * lo), n_alpha)
+            for j, al in enumerate(alphas[k]):
+                durations[k, j], dissipated[k, j], _ = sticky_run(g, m, al)
+        return SimpleNamespace(alphas=alphas, durations=durations, dissipated=dissipated, eps_cf=eps_cf,
+                               t_star=t_star, alpha_max=alpha_max, n_alpha=n_alpha,
+                               inf_bound=np.array([sticky_duration_infimum(m) for m in self.mus]))
+
+    @cached_property
+    def expansion(self) -> SimpleNamespace:
+        """(b) eq. contradictory-td-ts from the simulator's dense output of one sticky phase."""
+        gx, mx = next((p for p in self.pairs if p[1] > 0), self.pairs[0])
+        al = float(self.spec["expansion_alpha_over_gamma"]) * gx
+        _, _, tr = sticky_run(gx, mx, al)
+        zeta = np.geomspace(*self.spec["expansion_zeta"], 12)
+        s = sample_trajectory(tr, zeta)
+        F = s["y_minus_yeq"] / 2 + mx * s["ydot"] - 2 * gx  # eq. force-on-the-floor with y = y_eq + (y - y_eq)
+        R = -4 * F / zeta - (2 * al + (2 * gx - mx * al) * zeta)
+        slope, _ = np.polyfit(np.log(zeta), np.log(np.abs(R)), 1)
+        F3 = al / 4 + mx * gx - mx * mx * al / 2  # G''' = -mu G'' - G'/2 at the onset
+        # next Taylor term: R = -(2/3) F''' zeta^2 - (1/6) F'''' zeta^3 - ..., relative size |F''''/(4 F''')| zeta
+        F2 = mx * al / 2 - gx
+        F4 = -mx * F3 - F2 / 2
+        return SimpleNamespace(gamma=gx, mu=mx, alpha=al, zeta=zeta, R=R, slope=float(slope),
+                               coef_expected=abs(2.0 / 3.0 * F3), coef_measured=abs(R[0]) / zeta[0] ** 2,
+                               rel_next=abs(F4 / (4 * F3)))
+
+    @cached_property
+    def threshold(self) -> SimpleNamespace:
+        """(c) eps* by bisection of the simulator's sticky_forever against the closed form, with its resolution."""
+        d = self.durations
+        P = len(self.pairs)
+        eps_bis, res_budget = np.empty(P), np.empty(P)
+        for k, (g, m) in enumerate(self.pairs):
+            if not (0 < d.eps_cf[k] < math.inf):
+                eps_bis[k], res_budget[k] = d.eps_cf[k], 0.0
+                continue
+            lo, hi = 0.5 * d.eps_cf[k], 2.0 * d.eps_cf[k]
+            for _ in range(80):
+                mid = 0.5 * (lo + hi)
+                if sticky_run(g, m, mid)[0] == math.inf:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo <= 1e-14 * hi:
+                    break
+            eps_bis[k] = 0.5 * (lo + hi)
+            C, S = sticky_fundamental(m, d.t_star[k])
+            # the detach search resolves the gap 2 gamma - G to 4 eps scale, scale = sum of the magnitudes of the
+            # terms of eq. (F) with g = 0 (events.py): |G(0)| (1 + |C|) + |G'(0)| (t* + |S|); d F/d alpha = -S(t*)/2
+            scale_gap = 2 * g * (1 + abs(float(C))) + d.eps_cf[k] / 2 * (d.t_star[k] + abs(float(S)))
+            res_budget[k] = XN_ULPS * EPS * scale_gap / (abs(float(S)) / 2) / d.eps_cf[k]
+        return SimpleNamespace(eps_bis=eps_bis, res_budget=res_budget)
+
+    @cached_property
+    def family(self) -> SimpleNamespace:
+        """(d) the sticky-ic family (experiment sticky-ic-family) and its energy bound."""
+        fam = self.named["sticky-ic-family"]
+        eps = [float(e) for e in fam["eps"].values]
+        g, m = float(fam.attrs["gamma"]), float(fam.attrs["mu"])
+        e0 = [float(energy_excess(0.0, e, 0.5 * (-0.1 - e), 2 * g + 0.1 * m, g)) for e in eps]
+        # energy budget: every finite sticky event dissipates at least dE_min (measured over the alpha grid)
+        k_ic = self.pairs.index((g, m)) if (g, m) in self.pairs else 0
+        dE_min = float(np.nanmin(self.durations.dissipated[k_ic]))
+        emin_excess = 2 * g**2 / (1 + 2 * m**2)
+        return SimpleNamespace(eps=eps, gamma=g, mu=m, horizon=float(fam.attrs["horizon"]),
+                               counts=[int(c) for c in fam["sticky_count"].values],
+                               last_end=[float(t) for t in fam["last_sticky_end"].values],
+                               stop=[str(r) for r in fam["stop_reason"].values], dE_min=dE_min,
+                               bound=[1 + max(0.0, (e - emin_excess)) / dE_min for e in e0])
+
+    @cached_property
+    def data(self) -> xr.Dataset:
+        return _dataset(self)
+
+
+def measure(spec: dict, inputs=()) -> Measurements:
+    return Measurements(spec, inputs)
+
+
+# --------------------------------------------------------------------------- the claims
+
+CLAIMS: list = []
+
+
+@claim(CLAIMS, "min-energy", PAPER, "lem:Min-sticky-energy")
+def min_energy(m, spec) -> Verdict:
+    a = m.minimum
     tol_e = 1e-9
-    tol_x = 3e-5
-    rows["min-energy"] = Verdict(
+    return Verdict(
         claim="Minimum energy of sticky/grazing states E_min = (3 - 2 mu^2) gamma^2 / (2 (1 + 2 mu^2))",
         paper_ref="lem:Min-sticky-energy, eqs. sticky-energy, z-constraint, min-sticky-energy",
         computed=f"numerical min of the simulator's energy (events.energy_excess) over x = xdot = 0, x'' >= 0 "
-                 f"(grid {spec['grid']}^2, then SLSQP), for (gamma, mu) in {pairs}",
+                 f"(grid {spec['grid']}^2, then SLSQP), for (gamma, mu) in {m.pairs}",
         expected="the formula",
         measured="max relative difference (to E_min - E_m) %.2g; E_num = %s"
-                 % (float(np.max(rel_e)), ", ".join(f"{v:.10g}" for v in e_num_abs)),
+                 % (float(np.max(a.rel_e)), ", ".join(f"{v:.10g}" for v in a.e_num_abs)),
         tolerance=f"{tol_e:g}: SLSQP ftol 1e-15 on E/gamma^2 ~ 1, with margin for the constraint's rounding",
-        verdict=judge(bool(np.all(rel_e <= tol_e))))
-    rows["min-energy-minimiser"] = Verdict(
+        verdict=judge(bool(np.all(a.rel_e <= tol_e))))
+
+
+@claim(CLAIMS, "min-energy-minimiser", PAPER, "lem:Min-sticky-energy")
+def min_energy_minimiser(m, spec) -> Verdict:
+    a = m.minimum
+    tol_x = 3e-5
+    return Verdict(
         claim="The minimiser is the sticky onset Ydot_s = 4 gamma mu/(1 + 2 mu^2), z = 4 gamma/(1 + 2 mu^2)",
         paper_ref="eq. ydot-min-Esticky",
         computed="the numerical minimiser (Ydot, z) and x'' there",
         expected="formula; x'' = 0 (constraint active: a sticky onset, not a grazing)",
-        measured=f"max |dYdot|/(4 gamma) = {np.max(rel_yd):.2g}, max |dz|/(4 gamma) = {np.max(rel_z):.2g}, "
-                 f"max |x''|/gamma = {np.max(np.abs(acc_num) / gam):.2g}",
+        measured=f"max |dYdot|/(4 gamma) = {np.max(a.rel_yd):.2g}, max |dz|/(4 gamma) = {np.max(a.rel_z):.2g}, "
+                 f"max |x''|/gamma = {np.max(np.abs(a.acc_num) / m.gam):.2g}",
         tolerance=f"{tol_x:g}: a flat minimum locates its argument to ~sqrt(ftol) = 3e-8 relative, x 1e3 for SLSQP's "
                   "stopping rule",
-        verdict=judge(bool(np.all(rel_yd <= tol_x) and np.all(rel_z <= tol_x)
-                           and np.all(np.abs(acc_num) <= tol_x * gam))))
+        verdict=judge(bool(np.all(a.rel_yd <= tol_x) and np.all(a.rel_z <= tol_x)
+                           and np.all(np.abs(a.acc_num) <= tol_x * m.gam))))
 
-    # states constructed to reach sticky/grazing contacts near the minimiser, via the dynamics
-    c_pairs = [tuple(map(float, p)) for p in spec["construct_params"]]
-    factors = np.array(spec["construct_factors"])
-    c_excess = np.full((len(c_pairs), factors.size, 2), np.nan)  # (E - E_min)/gamma^2 at the event: [sticky, grazing]
-    c_kind = np.full((len(c_pairs), factors.size, 2), -1, dtype=np.int8)
-    c_drift = np.full((len(c_pairs), factors.size), np.nan)
-    c_graze_margin = np.full((len(c_pairs), factors.size), np.nan)  # energy dissipated between detection and T, / gamma^2
-    for k, (g, m) in enumerate(c_pairs):
-        alpha_star = 8 * g * m**3 / (1 + 2 * m * m)  # 4 gamma mu - Ydot_min (eq. ydot-min-Esticky)
-        emin_excess = 2 * g * g / (1 + 2 * m * m)  # E_min - E_m
-        for j, f in enumerate(factors):
-            alpha = f * alpha_star
-            with mp.workdps(40):
-                a, eta = sticky_onset(mp.mpf(g), mp.mpf(m), mp.mpf(alpha))
-            start, T, *_ = construct_contact(g, m, a, eta, 0, min(0.25 * 2 * alpha / g, 1.0))
-            tr = simulate(Parameters(g, m), start, max_events=1)
-            c_kind[k, j, 0] = tr.kind[0]
-            c_excess[k, j, 0] = (tr.energy_excess[0] - emin_excess) / g**2
-            # the classifier records the onset up to its window delta3 early; the energy there exceeds E(t_s)
-            # by the dissipation 2 mu xi'^2 (T - t_1) (eq. energy-dissipation)
-            c_drift[k, j] = 2 * m * float(tr.xidot[0]) ** 2 * (T - float(tr.t[0])) / g**2
-            with mp.workdps(40):  # grazing: x'' = 1e-2 gamma above the sticky line
-                eta_g = eta + mp.mpf(1e-2 * g)
-            start, T, acc, jerk, scale = construct_contact(g, m, a, eta_g, 0, 0.5)
-            # the classifier takes x'' <= 4 |x'''| delta3 for zero (a sticky onset): keep far from that
-            c_graze_margin[k, j] = acc / (4 * abs(jerk) * contact_window(scale, acc, jerk)[3])
-            tr = simulate(Parameters(g, m), start, max_events=1)
-            c_kind[k, j, 1] = tr.kind[0]
-            c_excess[k, j, 1] = (tr.energy_excess[0] - emin_excess) / g**2
-    # Monte-Carlo (shared with the finite-number test below)
-    mc_spec = {"seed": spec["seed"], "n_samples": spec["mc_samples"], "events": spec["mc_events"],
-               **{k: spec[k] for k in ("gamma", "mu_under", "mu_over", "energy_over_gamma2", "tail")}}
-    mc = monte_carlo(mc_spec)
-    mc_anom = int(mc["counts"][:, [GRAZING, STICKY_START]].sum())
-    anomalous = (c_kind == STICKY_START) | (c_kind == GRAZING)
-    min_ex = float(np.nanmin(np.where(anomalous, c_excess, np.nan)))
-    at_min = c_excess[:, factors == 1.0, 0].ravel() / c_drift[:, factors == 1.0].ravel()
+
+@claim(CLAIMS, "no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy")
+def no_anomaly_below_min_energy(m, spec) -> Verdict:
+    c, mc = m.constructions, m.mc
+    mc_anom = int(mc["counts"].values[:, [GRAZING, STICKY_START]].sum())
+    anomalous = (c.kind == STICKY_START) | (c.kind == GRAZING)
+    min_ex = float(np.nanmin(np.where(anomalous, c.excess, np.nan)))
+    at_min = c.excess[:, c.factors == 1.0, 0].ravel() / c.drift[:, c.factors == 1.0].ravel()
     tol_round = 1e-9  # rounding of E - E_m at O(gamma^2) plus the backward flight's O(T) energy drift (none: exact)
-    rows["no-anomaly-below-min-energy"] = Verdict(
+    return Verdict(
         claim="No sticky or grazing event below E_min (the bound is attained at the sticky onset)",
         paper_ref="lem:Min-sticky-energy",
         computed=f"{int(anomalous.sum())} anomalous contacts reached by the dynamics (backward-evolved from sticky/"
-                 f"grazing states with alpha_s = f alpha_min, f in {factors.tolist()}, (gamma, mu) in "
-                 f"{c_pairs}): E at the event minus E_min; and {len(mc['gamma'])}-run Monte-Carlo",
+                 f"grazing states with alpha_s = f alpha_min, f in {c.factors.tolist()}, (gamma, mu) in "
+                 f"{c.pairs}): E at the event minus E_min; and the {mc.sizes['item']}-run Monte-Carlo of sweep "
+                 f"{MONTE_CARLO}",
         expected="(E - E_min)/gamma^2 >= 0 at every anomalous event; at the sticky minimiser (f = 1) E - E_min = "
                  "the dissipation 2 mu xi'^2 (T - t_1) between the recorded onset (early by <= delta3) and the exact one",
         measured=f"min (E - E_min)/gamma^2 = {min_ex:.3g}; at f = 1, (E - E_min)/dissipation = "
                  + ", ".join(f"{v:.6f}" for v in at_min)
-                 + f"; kinds: {int((c_kind[..., 0] == STICKY_START).sum())}/{c_kind[..., 0].size} sticky, "
-                   f"{int((c_kind[..., 1] == GRAZING).sum())}/{c_kind[..., 1].size} grazing (x''/(4|x'''| delta3) >= "
-                   f"{np.nanmin(c_graze_margin):.3g})"
+                 + f"; kinds: {int((c.kind[..., 0] == STICKY_START).sum())}/{c.kind[..., 0].size} sticky, "
+                   f"{int((c.kind[..., 1] == GRAZING).sum())}/{c.kind[..., 1].size} grazing (x''/(4|x'''| delta3) >= "
+                   f"{np.nanmin(c.graze_margin):.3g})"
                  + f"; Monte-Carlo anomalous events: {mc_anom}",
         tolerance=f"-{tol_round:g} (rounding of E/gamma^2 for a state known to float64, ~1e-16/gamma, with margin); "
                   "ratio 1 +- 1e-3 (first-order dissipation estimate over T - t_1 ~ 1e-5: O(1e-5) relative)",
         verdict=judge(min_ex >= -tol_round and bool(np.all(np.abs(at_min - 1) <= 1e-3)) and mc_anom == 0
-                      and bool(np.all(c_kind[..., 0] == STICKY_START)) and bool(np.all(c_kind[..., 1] == GRAZING))))
+                      and bool(np.all(c.kind[..., 0] == STICKY_START)) and bool(np.all(c.kind[..., 1] == GRAZING))))
 
-    # ---- (b) Lemma td-ts-bound: duration vs alpha
-    n_alpha = int(spec["n_alpha"])
-    alpha_max = float(spec["alpha_max_over_gamma"])
-    durations = np.full((P, n_alpha), np.inf)
-    dissipated = np.full((P, n_alpha), np.nan)
-    alphas = np.empty((P, n_alpha))
-    eps_cf = np.empty(P)
-    t_star = np.empty(P)
-    for k, (g, m) in enumerate(pairs):
-        eps_cf[k], t_star[k] = eps_star(g, m)
-        lo = eps_cf[k] * (1 + 1e-6) if 0 < eps_cf[k] < math.inf else 1e-6 * g
-        alphas[k] = np.geomspace(lo, max(alpha_max * g, 10 * lo), n_alpha)
-        for j, al in enumerate(alphas[k]):
-            durations[k, j], dissipated[k, j], _ = sticky_run(g, m, al)
-    inf_bound = np.array([sticky_duration_infimum(m) for m in mus])
-    finite = np.isfinite(durations)
-    min_dur = np.array([durations[k][finite[k]].min() if finite[k].any() else np.inf for k in range(P)])
-    ok_b = bool(np.all(durations >= inf_bound[:, None] * (1 - 1e-12)))
-    monotone = all(np.all(np.diff(durations[k][finite[k]]) < 0) for k in range(P))
-    rows["duration-bounded-below"] = Verdict(
+
+@claim(CLAIMS, "duration-bounded-below", PAPER, "lem:td-ts-bound")
+def duration_bounded_below(m, spec) -> Verdict:
+    d = m.durations
+    finite = np.isfinite(d.durations)
+    min_dur = np.array([d.durations[k][finite[k]].min() if finite[k].any() else np.inf for k in range(len(m.pairs))])
+    ok = bool(np.all(d.durations >= d.inf_bound[:, None] * (1 - 1e-12)))
+    monotone = all(np.all(np.diff(d.durations[k][finite[k]]) < 0) for k in range(len(m.pairs)))
+    return Verdict(
         claim="The duration t_d - t_s of a sticky event cannot be made arbitrarily short",
         paper_ref="lem:td-ts-bound",
-        computed=f"simulated sticky phases from the sticky line, {n_alpha} alpha_s = 4 gamma mu - Ydot_s log-spaced "
-                 f"from eps* to {alpha_max:g} gamma, for (gamma, mu) in {pairs}",
+        computed=f"simulated sticky phases from the sticky line, {d.n_alpha} alpha_s = 4 gamma mu - Ydot_s log-spaced "
+                 f"from eps* to {d.alpha_max:g} gamma, for (gamma, mu) in {m.pairs}",
         expected="inf (t_d - t_s) > 0; own derivation: t_d - t_s > pi/omega_s, omega_s = sqrt(1/2 - mu^2/4), "
                  "approached as alpha_s -> inf; infinite for alpha_s < eps*",
-        measured="smallest durations " + ", ".join(f"{d:.6g}" for d in min_dur) + " vs pi/omega_s "
-                 + ", ".join(f"{d:.6g}" for d in inf_bound) + f"; decreasing in alpha_s: {monotone}",
+        measured="smallest durations " + ", ".join(f"{v:.6g}" for v in min_dur) + " vs pi/omega_s "
+                 + ", ".join(f"{v:.6g}" for v in d.inf_bound) + f"; decreasing in alpha_s: {monotone}",
         tolerance="1e-12 relative (detach times are exact to rounding, tests/test_sticky.py)",
-        verdict=judge(ok_b and bool(np.all(min_dur > 0))))
+        verdict=judge(ok and bool(np.all(min_dur > 0))))
 
-    # expansion (eq. contradictory-td-ts) from the simulator's dense output
-    gx, mx = next((p for p in pairs if p[1] > 0), pairs[0])
-    al = float(spec["expansion_alpha_over_gamma"]) * gx
-    _, _, tr = sticky_run(gx, mx, al)
-    zeta = np.geomspace(*spec["expansion_zeta"], 12)
-    s = sample_trajectory(tr, zeta)
-    F = s["y_minus_yeq"] / 2 + mx * s["ydot"] - 2 * gx  # eq. force-on-the-floor with y = y_eq + (y - y_eq)
-    R = -4 * F / zeta - (2 * al + (2 * gx - mx * al) * zeta)
-    lz, lr = np.log(zeta), np.log(np.abs(R))
-    slope, icpt = np.polyfit(lz, lr, 1)
-    F3 = al / 4 + mx * gx - mx * mx * al / 2  # G''' = -mu G'' - G'/2 at the onset
-    coef_expected = abs(2.0 / 3.0 * F3)
-    coef_measured = abs(R[0]) / zeta[0] ** 2
-    # next Taylor term: R = -(2/3) F''' zeta^2 - (1/6) F'''' zeta^3 - ..., relative size |F''''/(4 F''')| zeta
-    F2 = mx * al / 2 - gx
-    F4 = -mx * F3 - F2 / 2
-    rel_next = abs(F4 / (4 * F3))
-    tol_slope = 3 * rel_next * zeta[-1]
-    tol_coef = 3 * rel_next * zeta[0]
-    rows["onset-expansion"] = Verdict(
+
+@claim(CLAIMS, "onset-expansion", PAPER, "lem:td-ts-bound")
+def onset_expansion(m, spec) -> Verdict:
+    x = m.expansion
+    tol_slope = 3 * x.rel_next * x.zeta[-1]
+    tol_coef = 3 * x.rel_next * x.zeta[0]
+    return Verdict(
         claim="Near the onset 2 alpha_s + (2 gamma - mu alpha_s) zeta = O(zeta^2) with F(t_s + zeta) = 0 replaced by "
               "the Taylor expansion of F",
         paper_ref="lem:td-ts-bound, eq. contradictory-td-ts",
         computed=f"R(zeta) = -4 F(t_s + zeta)/zeta - [2 alpha_s + (2 gamma - mu alpha_s) zeta] from the simulator's "
-                 f"sticky-phase samples, gamma = {gx}, mu = {mx}, alpha_s = {al:.3g}, zeta in {spec['expansion_zeta']}",
+                 f"sticky-phase samples, gamma = {x.gamma}, mu = {x.mu}, alpha_s = {x.alpha:.3g}, zeta in "
+                 f"{spec['expansion_zeta']}",
         expected="|R| ~ c zeta^2 with c = (2/3)|F'''(t_s)|, F''' = alpha/4 + mu gamma - mu^2 alpha/2 (own derivation)",
-        measured=f"slope {slope:.5f}; c = {coef_measured:.6g} vs {coef_expected:.6g}",
+        measured=f"slope {x.slope:.5f}; c = {x.coef_measured:.6g} vs {x.coef_expected:.6g}",
         tolerance=f"slope 2 +- {tol_slope:.2g}, c to {tol_coef:.2g} relative: 3 x the next Taylor term's relative size "
-                  f"|F''''/(4 F''')| zeta = {rel_next:.3g} zeta at the largest / smallest zeta",
-        verdict=judge(abs(slope - 2) <= tol_slope and abs(coef_measured / coef_expected - 1) <= tol_coef))
+                  f"|F''''/(4 F''')| zeta = {x.rel_next:.3g} zeta at the largest / smallest zeta",
+        verdict=judge(abs(x.slope - 2) <= tol_slope and abs(x.coef_measured / x.coef_expected - 1) <= tol_coef))
 
-    # ---- (c) remark: infinitely long sticky events, threshold eps*
-    eps_bis = np.empty(P)
-    res_budget = np.empty(P)
-    for k, (g, m) in enumerate(pairs):
-        if not (0 < eps_cf[k] < math.inf):
-            eps_bis[k] = eps_cf[k]
-            res_budget[k] = 0.0
-            continue
-        lo, hi = 0.5 * eps_cf[k], 2.0 * eps_cf[k]
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            if sticky_run(g, m, mid)[0] == math.inf:
-                lo = mid
-            else:
-                hi = mid
-            if hi - lo <= 1e-14 * hi:
-                break
-        eps_bis[k] = 0.5 * (lo + hi)
-        C, S = sticky_fundamental(m, t_star[k])
-        # the detach search resolves the gap 2 gamma - G to 4 eps scale, scale = sum of the magnitudes of the terms
-        # of eq. (F) with g = 0 (events.py): |G(0)| (1 + |C|) + |G'(0)| (t* + |S|); d F/d alpha = -S(t*)/2
-        scale_gap = 2 * g * (1 + abs(float(C))) + eps_cf[k] / 2 * (t_star[k] + abs(float(S)))
-        res_budget[k] = XN_ULPS * EPS * scale_gap / (abs(float(S)) / 2) / eps_cf[k]
-    rel_c = np.where(np.isfinite(eps_cf) & (eps_cf > 0), np.abs(eps_bis - eps_cf) / np.where(eps_cf > 0, eps_cf, 1), 0.0)
-    tol_c = np.maximum(10 * res_budget, 1e-13)
+
+@claim(CLAIMS, "infinite-sticky-events", PAPER, "lem:td-ts-bound")
+def infinite_sticky_events(m, spec) -> Verdict:
+    eps_cf, eps_bis = m.durations.eps_cf, m.threshold.eps_bis
     sel = np.isfinite(eps_cf) & (eps_cf > 0)
-    rows["infinite-sticky-events"] = Verdict(
+    rel_c = np.where(sel, np.abs(eps_bis - eps_cf) / np.where(eps_cf > 0, eps_cf, 1), 0.0)
+    tol_c = np.maximum(10 * m.threshold.res_budget, 1e-13)
+    return Verdict(
         claim="The onset (0, 0, 1 + 2 gamma - 2 mu Ydot, Ydot) with Ydot = 4 mu gamma - eps never detaches for small "
               "eps > 0",
         paper_ref="remark after lem:td-ts-bound (no upper bound on the duration)",
         computed="threshold eps* by bisection of the simulator's stop_reason == 'sticky_forever' vs own closed form "
                  "eps* = 4 gamma min_{S<0} (1 - C)/(-S) of the sticky oscillator",
         expected="eps* > 0 for mu > 0, equal to the closed form",
-        measured="; ".join(f"(gamma, mu) = ({g:g}, {m:g}): bisection {b:.12g}, closed form {c:.12g}"
-                           for (g, m), b, c in zip(pairs, eps_bis, eps_cf)),
+        measured="; ".join(f"(gamma, mu) = ({g:g}, {mu:g}): bisection {b:.12g}, closed form {c:.12g}"
+                           for (g, mu), b, c in zip(m.pairs, eps_bis, eps_cf)),
         tolerance="relative 10 x (the detach search's resolution of F, 4 eps scale of eq. (F)) / (dF/dalpha = "
                   "|S(t*)|/2) / eps* (>= 1e-13, the bisection's width): "
                   + ", ".join(f"{t:.1g}" for t in tol_c[sel]),
-        verdict=judge(bool(np.all(rel_c[sel] <= tol_c[sel]) and np.all(eps_bis[mus > 0] > 0))))
-    # the mu = 0 and mu >= sqrt 2 ends
+        verdict=judge(bool(np.all(rel_c[sel] <= tol_c[sel]) and np.all(eps_bis[m.mus > 0] > 0))))
+
+
+@claim(CLAIMS, "infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound")
+def infinite_sticky_events_ends(m, spec) -> Verdict:
     m0 = [sticky_run(0.01, 0.0, r * 0.01, t_max=200.0)[0] for r in (1.0, 0.1)]
     m_over = [sticky_run(0.01, 2.0, r * 0.01)[0] for r in (1.0, 1e3)]
-    rows["infinite-sticky-events-ends"] = Verdict(
+    return Verdict(
         claim="Ends of the remark: needs mu > 0 (the paper assumes nu > 0); for mu >= sqrt 2 every sticky event is "
               "infinite",
         paper_ref="remark after lem:td-ts-bound; sec. 2 (all constants positive)",
@@ -283,117 +396,109 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         verdict=judge(all(math.isfinite(d) and d < 2 * math.pi * SQRT2 for d in m0)
                       and all(d == math.inf for d in m_over)))
 
-    # the boundary alpha_s = 0: F = F' = 0, F'' = -gamma < 0 -- contact must continue (eq. cond_di_distacco is strict)
+
+@claim(CLAIMS, "zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound")
+def zero_alpha_keeps_contact(m, spec) -> Verdict:
+    """The boundary alpha_s = 0: F = F' = 0, F'' = -gamma < 0 -- contact must continue (eq. cond_di_distacco is strict)."""
     edge = []
-    for g, m in pairs:
-        if m <= 0:
+    for g, mu in m.pairs:
+        if mu <= 0:
             continue
-        d0 = Deviations(0.0, 0.0, 2.0 * m * g, 2.0 * g - 4.0 * m * m * g)  # Ydot = 4 gamma mu exactly
-        want = "sticky_forever" if eps_star(g, m)[0] > 0 else "detach"
+        d0 = Deviations(0.0, 0.0, 2.0 * mu * g, 2.0 * g - 4.0 * mu * mu * g)  # Ydot = 4 gamma mu exactly
+        want = "sticky_forever" if eps_star(g, mu)[0] > 0 else "detach"
         try:
-            tr0 = simulate(Parameters(g, m), d0, max_events=5, t_max=50.0)
+            tr0 = simulate(Parameters(g, mu), d0, max_events=5, t_max=50.0)
             got = f"{tr0.kind_names} at t = {tr0.t.tolist()} (stop {tr0.stop_reason})"
             ok0 = tr0.kind[0] == STICKY_START and (len(tr0) == 1 or tr0.t[1] > 0.0) and tr0.stop_reason == want
         except RuntimeError as err:
             got, ok0 = f"RuntimeError: {err}", False
-        edge.append((g, m, d0, got, ok0))
-    bad0 = [e for e in edge if not e[4]]
-    msg0 = f"{len(edge) - len(bad0)}/{len(edge)} stay in contact"
-    if bad0:
-        msg0 += "; failures: " + "; ".join(
-            f"gamma = {g!r}, mu = {m!r}, Deviations(x, xdot, xidot, eta) = ({d0.x.hex()}, {d0.xdot.hex()}, "
-            f"{d0.xidot.hex()}, {d0.eta.hex()}): got {got}" for g, m, d0, got, _ in bad0)
-        msg0 += ("; a regression of this kind once came from events._sticky_phase detaching at once "
-                 "when F = F' = 0 (see tests/test_checks_part2.py)")
-    rows["zero-alpha-keeps-contact"] = Verdict(
+        edge.append((g, mu, d0, got, ok0))
+    bad = [e for e in edge if not e[4]]
+    msg = f"{len(edge) - len(bad)}/{len(edge)} stay in contact"
+    if bad:
+        msg += "; failures: " + "; ".join(
+            f"gamma = {g!r}, mu = {mu!r}, Deviations(x, xdot, xidot, eta) = ({d0.x.hex()}, {d0.xdot.hex()}, "
+            f"{d0.xidot.hex()}, {d0.eta.hex()}): got {got}" for g, mu, d0, got, _ in bad)
+        msg += ("; a regression of this kind once came from events._sticky_phase detaching at once "
+                "when F = F' = 0 (see tests/test_checks_part2.py)")
+    return Verdict(
         claim="A contact state with F = F' = 0 (alpha_s = 0) keeps contact: F'' = -gamma < 0",
         paper_ref="sec. 3 (strict inequality in eq. cond_di_distacco)",
         computed=f"the sticky-line state with Ydot_s = 4 gamma mu exactly, for (gamma, mu) in {[e[:2] for e in edge]}, "
                  "simulated to t = 50",
         expected="sticky_start at t = 0 and no detach at t = 0 (sticky_forever, as alpha_s = 0 < eps*)",
-        measured=msg0,
+        measured=msg,
         tolerance="exact (event kinds)",
-        verdict=judge(not bad0))
+        verdict=judge(not bad))
 
-    # ---- (d) Theorem Finite-number-sticky-ev
-    mc_sticky_max = int(mc["counts"][:, STICKY_START].max())
-    eps_family = [float(e) for e in spec["sticky_ic_eps"]]
-    g_ic, m_ic = map(float, spec["sticky_ic_params"])
-    horizon = float(spec["horizon"])
-    p_ic = Parameters(g_ic, m_ic)
-    fam_counts, fam_last_end, fam_stop, fam_e0 = [], [], [], []
-    for e in eps_family:
-        tr = simulate(p_ic, State.sticky_ic(p_ic, eps=e), max_events=int(spec["horizon_events"]),
-                      t_max=horizon)
-        st = np.flatnonzero(tr.kind == STICKY_START)
-        fam_counts.append(int(st.size))
-        det = np.flatnonzero(tr.kind == DETACH)
-        fam_last_end.append(float(tr.t[det[-1]]) if det.size else (math.inf if st.size else math.nan))
-        fam_stop.append(tr.stop_reason)
-        fam_e0.append(float(energy_excess(0.0, e, 0.5 * (-0.1 - e), 2 * g_ic + 0.1 * m_ic, g_ic)))
-    # energy budget: every finite sticky event dissipates at least dE_min (measured over the alpha grid)
-    k_ic = pairs.index((g_ic, m_ic)) if (g_ic, m_ic) in pairs else 0
-    dE_min = float(np.nanmin(dissipated[k_ic]))
-    emin_excess = 2 * g_ic**2 / (1 + 2 * m_ic**2)
-    bound = [1 + max(0.0, (e0 - emin_excess)) / dE_min for e0 in fam_e0]
-    ok_d = mc_sticky_max == 0 and all(c <= b for c, b in zip(fam_counts, bound)) and all(
-        not math.isinf(t) or s == "sticky_forever" for t, s in zip(fam_last_end, fam_stop))
-    rows["finitely-many-sticky-events"] = Verdict(
+
+@claim(CLAIMS, "finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev")
+def finitely_many_sticky_events(m, spec) -> Verdict:
+    f, mc = m.family, m.mc
+    mc_sticky_max = int(mc["counts"].values[:, STICKY_START].max())
+    ok = mc_sticky_max == 0 and all(c <= b for c, b in zip(f.counts, f.bound)) and all(
+        not math.isinf(t) or s == "sticky_forever" for t, s in zip(f.last_end, f.stop))
+    return Verdict(
         claim="Every solution has at most finitely many sticky events",
         paper_ref="thm:Finite-number-sticky-ev",
-        computed=f"sticky_start counts up to t = {horizon:g}: Monte-Carlo ({len(mc['gamma'])} runs x {spec['mc_events']} "
-                 f"events) and eq. sticky-ic (gamma = {g_ic}, mu = {m_ic}, Ydot0 = -0.1) for eps in {eps_family}; "
+        computed=f"sticky_start counts up to t = {f.horizon:g}: Monte-Carlo ({mc.sizes['item']} runs x "
+                 f"{int(mc.attrs['events'])} events, sweep {MONTE_CARLO}) and eq. sticky-ic (experiment sticky-ic-family) "
+                 f"(gamma = {f.gamma}, mu = {f.mu}, Ydot0 = -0.1) for eps in {f.eps}; "
                  f"bound 1 + (E(0) - E_min)/dE_min with dE_min = min over alpha_s of the energy the simulator "
                  f"dissipates in one sticky phase",
         expected="finite counts, below the energy bound",
-        measured=f"Monte-Carlo max per run {mc_sticky_max}; sticky-ic counts {fam_counts} (last sticky phase ends at "
-                 f"{['-' if math.isnan(t) else round(t, 4) for t in fam_last_end]}; runs end by {sorted(set(fam_stop))}), "
-                 f"bounds {[round(b, 1) for b in bound]}; "
-                 f"dE_min = {dE_min:.4g} = {dE_min / g_ic**2:.4g} gamma^2"
+        measured=f"Monte-Carlo max per run {mc_sticky_max}; sticky-ic counts {f.counts} (last sticky phase ends at "
+                 f"{['-' if math.isnan(t) else round(t, 4) for t in f.last_end]}; runs end by {sorted(set(f.stop))}), "
+                 f"bounds {[round(b, 1) for b in f.bound]}; "
+                 f"dE_min = {f.dE_min:.4g} = {f.dE_min / f.gamma**2:.4g} gamma^2"
                  + ("; no run has more than one sticky event, so the bound itself is not exercised (a second onset "
                     "needs the flight from a detach state to end with x = xdot = x'' = 0: three conditions on the "
                     "detach xi' and the flight time, so only on curves of the (gamma, mu) plane, which a grid misses)"
-                    if max(fam_counts + [mc_sticky_max]) <= 1 else ""),
+                    if max(f.counts + [mc_sticky_max]) <= 1 else ""),
         tolerance="exact counts",
-        verdict=judge(ok_d))
+        verdict=judge(ok))
 
-    data = xr.Dataset(
+
+def _dataset(m: Measurements) -> xr.Dataset:
+    """The numbers behind the figure (sections a, b and d)."""
+    a, c, d, x, f = m.minimum, m.constructions, m.durations, m.expansion, m.family
+    return xr.Dataset(
         {
-            "gamma": variable("pair", gam, "gamma"),
-            "mu": variable("pair", mus, "mu"),
-            "E_min_numerical": variable("pair", e_num_abs, "numerical minimum of E over sticky/grazing states"),
-            "E_min_formula": variable("pair", e_formula, "E_min of eq. min-sticky-energy"),
-            "E_min_grid": variable("pair", e_grid - gam**2 / 2, "grid minimum of E over sticky/grazing states"),
-            "ydot_min_numerical": variable("pair", yd_num, "numerical minimiser Ydot_s"),
-            "ydot_min_formula": variable("pair", yd_formula, "Ydot_s of eq. ydot-min-Esticky"),
-            "z_min_numerical": variable("pair", z_num, "numerical minimiser z = Y_s + 2 gamma - 1"),
-            "alpha": variable(("pair", "alpha_index"), alphas, "alpha_s = 4 gamma mu - Ydot_s"),
-            "duration": variable(("pair", "alpha_index"), durations, "sticky duration t_d - t_s (inf: never detaches)"),
-            "dissipated": variable(("pair", "alpha_index"), dissipated, "energy dissipated during the sticky phase"),
-            "duration_infimum": variable("pair", inf_bound, "pi/omega_s, own lower bound of the duration"),
-            "eps_star_bisection": variable("pair", eps_bis, "threshold eps* from the simulator (bisection)"),
-            "eps_star_closed_form": variable("pair", eps_cf, "threshold eps* from the own closed form"),
-            "construct_factor": variable("factor", factors, "alpha_s of the construction / alpha_s of the minimiser"),
-            "construct_gamma": variable("cpair", np.array([p[0] for p in c_pairs]), "gamma of the constructions"),
-            "construct_mu": variable("cpair", np.array([p[1] for p in c_pairs]), "mu of the constructions"),
-            "construct_excess": variable(("cpair", "factor", "contact"), c_excess,
-                                   "(E - E_min)/gamma^2 at the constructed anomalous event"),
-            "construct_kind": variable(("cpair", "factor", "contact"), c_kind, "kind of the constructed event",
-                                 flag_values=[0, 1, 2, 3], flag_meanings="impact grazing sticky_start detach"),
-            "expansion_zeta": variable("zeta", zeta, "time since the onset zeta"),
-            "expansion_residual": variable("zeta", R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
-            "family_eps": variable("family", np.array(eps_family), "eps of eq. sticky-ic"),
-            "family_sticky_count": variable("family", np.array(fam_counts), "sticky events up to the horizon"),
-            "family_bound": variable("family", np.array(bound), "energy bound on the number of sticky events"),
-            "mc_sticky_count": variable("sample", mc["counts"][:, STICKY_START], "sticky events per Monte-Carlo run"),
+            "gamma": variable("pair", m.gam, "gamma"),
+            "mu": variable("pair", m.mus, "mu"),
+            "E_min_numerical": variable("pair", a.e_num_abs, "numerical minimum of E over sticky/grazing states"),
+            "E_min_formula": variable("pair", a.e_formula, "E_min of eq. min-sticky-energy"),
+            "E_min_grid": variable("pair", a.e_grid_abs, "grid minimum of E over sticky/grazing states"),
+            "ydot_min_numerical": variable("pair", a.yd_num, "numerical minimiser Ydot_s"),
+            "ydot_min_formula": variable("pair", a.yd_formula, "Ydot_s of eq. ydot-min-Esticky"),
+            "z_min_numerical": variable("pair", a.z_num, "numerical minimiser z = Y_s + 2 gamma - 1"),
+            "alpha": variable(("pair", "alpha_index"), d.alphas, "alpha_s = 4 gamma mu - Ydot_s"),
+            "duration": variable(("pair", "alpha_index"), d.durations, "sticky duration t_d - t_s (inf: never detaches)"),
+            "dissipated": variable(("pair", "alpha_index"), d.dissipated, "energy dissipated during the sticky phase"),
+            "duration_infimum": variable("pair", d.inf_bound, "pi/omega_s, own lower bound of the duration"),
+            "eps_star_bisection": variable("pair", m.threshold.eps_bis, "threshold eps* from the simulator (bisection)"),
+            "eps_star_closed_form": variable("pair", d.eps_cf, "threshold eps* from the own closed form"),
+            "construct_factor": variable("factor", c.factors, "alpha_s of the construction / alpha_s of the minimiser"),
+            "construct_gamma": variable("cpair", np.array([p[0] for p in c.pairs]), "gamma of the constructions"),
+            "construct_mu": variable("cpair", np.array([p[1] for p in c.pairs]), "mu of the constructions"),
+            "construct_excess": variable(("cpair", "factor", "contact"), c.excess,
+                                         "(E - E_min)/gamma^2 at the constructed anomalous event"),
+            "construct_kind": variable(("cpair", "factor", "contact"), c.kind, "kind of the constructed event",
+                                       flag_values=[0, 1, 2, 3], flag_meanings="impact grazing sticky_start detach"),
+            "expansion_zeta": variable("zeta", x.zeta, "time since the onset zeta"),
+            "expansion_residual": variable("zeta", x.R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
+            "family_eps": variable("family", np.array(f.eps), "eps of eq. sticky-ic"),
+            "family_sticky_count": variable("family", np.array(f.counts), "sticky events up to the horizon"),
+            "family_bound": variable("family", np.array(f.bound), "energy bound on the number of sticky events"),
+            "mc_sticky_count": variable("sample", m.mc["counts"].values[:, STICKY_START],
+                                        "sticky events per Monte-Carlo run"),
         },
         coords={"contact": ("contact", np.array(["sticky", "grazing"], dtype=object),
                             {"long_name": "constructed contact type", "units": "1"})},
-        attrs={"check": NAME, "expansion_gamma": gx, "expansion_mu": mx, "expansion_alpha": al,
-               "expansion_slope": float(slope), "expansion_coef_expected": coef_expected,
-               "dE_min": dE_min, "sticky_ic_gamma": g_ic, "sticky_ic_mu": m_ic, "horizon": horizon},
+        attrs={"check": NAME, "expansion_gamma": x.gamma, "expansion_mu": x.mu, "expansion_alpha": x.alpha,
+               "expansion_slope": x.slope, "expansion_coef_expected": x.coef_expected,
+               "dE_min": f.dE_min, "sticky_ic_gamma": f.gamma, "sticky_ic_mu": f.mu, "horizon": f.horizon},
     )
-    return SimpleNamespace(rows=rows, data=data)
 
 
 # --------------------------------------------------------------------------- plot
@@ -464,20 +569,6 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-CLAIMS: list = []
-for _id, _kind, _subject in (
-    ("min-energy", PAPER, "lem:Min-sticky-energy"),
-    ("min-energy-minimiser", PAPER, "lem:Min-sticky-energy"),
-    ("no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy"),
-    ("duration-bounded-below", PAPER, "lem:td-ts-bound"),
-    ("onset-expansion", PAPER, "lem:td-ts-bound"),
-    ("infinite-sticky-events", PAPER, "lem:td-ts-bound"),
-    ("infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound"),
-    ("zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound"),
-    ("finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev"),
-):
-    recorded(CLAIMS, _id, _kind, _subject)
-
 @claim(CLAIMS, "min-energy-above-equilibrium", PAPER, "lem:Min-sticky-energy")
 def min_energy_above_equilibrium(m, spec) -> Verdict:
     """E_min > E_m for every finite mu; they coincide only as mu -> inf (the remark after the lemma)."""
@@ -503,4 +594,5 @@ def min_energy_above_equilibrium(m, spec) -> Verdict:
 
 
 CHECK = Check(NAME, measure, tuple(CLAIMS), plot,
-              title="Sticky events: minimum energy, duration, infinite events, finiteness")
+              title="Sticky events: minimum energy, duration, infinite events, finiteness",
+              experiments=(Experiment("sticky-ic-family", FAMILY_KEYS, sticky_ic_family),))

@@ -1,17 +1,17 @@
 """Sweep ``asymptotic-atlas``: the limits of Theorem main_thm over a (mu, gamma) grid, and the transient.
 
 For every cell (mu, gamma) of a log-spaced grid, the drop from psi(0) = ``psi0`` (xi = 0, at
-rest) is simulated for ``events`` events and, for q_n = n tau_n mu/3 (Theorem main_thm) and
-q_n = n Xdot_n mu/(3 gamma) (its proof, via Lemma Giorgio's), the limit L of q_n is fitted
-with its error and decay exponent (:func:`bounce.checks.asymptotics.fit_limit`: corrections
+rest) is simulated for ``events`` events and, for each q_n of the check ``main-theorem``
+(n tau_n mu/3 of Theorem main_thm, n Xdot_n mu/(3 gamma) via Lemma Giorgio's, and the other
+limits of its proof), the limit L of q_n is fitted with its error and decay exponent (:func:`bounce.checks.asymptotics.fit_limit`: corrections
 of the map eq. restituzione plus the sticky spring's relaxation; the fit's error is the
 largest change of L under window and model variants).  The transient is the first n after
 which |q_n - 1| < ``transient`` for good (:func:`bounce.checks.asymptotics.transient_length`).
 The theorem predicts L = 1 in every cell; a NaN limit means no fit window of a decade
 after the transient within ``events`` (slow over-damped relaxation, n^{-3 lam/mu}).
 
-This extends the check ``main-theorem``'s 15-cell atlas to a grid sized by the config and
-run over shards; the numerics are the check's, imported, not re-coded.
+The check ``main-theorem`` judges its atlas claims on this gathered file (a declared input, config
+``checks.main-theorem.inputs``); the quantities are the check's, imported, not re-coded.
 """
 
 from __future__ import annotations
@@ -21,15 +21,14 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..checks.asymptotics import series_quantities, trajectory_series
+from ..checks.asymptotics import QUANTITIES, QUANTITY_CLAIMS, series_quantities, trajectory_series
 from ..fitting import fit_limit, transient_length
 from ..model import Parameters, State
 from ..simulate import simulate
 from .base import ITEM, Sweep
 
 NAME = "asymptotic-atlas"
-QUANTITIES = ("tau", "xdot")
-QUANTITY_LABELS = {"tau": "n tau_n mu / 3", "xdot": "n Xdot_n mu / (3 gamma)"}
+QUANTITY_LABELS = {q: QUANTITY_CLAIMS[q][0] for q in QUANTITIES}
 FIT_KEYS = ("limit", "limit_err", "exponent", "exponent_err")
 
 
