@@ -453,7 +453,8 @@ def finitely_many_sticky_events(m, spec) -> Verdict:
                  f"dE_min = {f.dE_min:.4g} = {f.dE_min / f.gamma**2:.4g} gamma^2"
                  + ("; no run has more than one sticky event, so the bound itself is not exercised (a second onset "
                     "needs the flight from a detach state to end with x = xdot = x'' = 0: three conditions on the "
-                    "detach xi' and the flight time, so only on curves of the (gamma, mu) plane, which a grid misses)"
+                    "detach xi' and the flight time, so only on curves of the (gamma, mu) plane, which a grid misses; "
+                    "claim group sticky-events constructs the mu = 0 cycle with infinitely many)"
                     if max(f.counts + [mc_sticky_max]) <= 1 else ""),
         tolerance="exact counts",
         verdict=judge(ok))
