@@ -239,7 +239,9 @@ def fundamental(t, params, coefs):
     omc = 1 - c(t), tms = t - S(t), omsd = 1 - S'(t) are accurate to a few ulps
     *relative to themselves* for every t and mu >= 0 (Taylor branch for rho t <=
     SERIES_Q, expm1 closed forms beyond); c, S, Sd = S' to a few ulps of their
-    envelope e^{-lam_slow t} (relative, away from their zeros).
+    envelope e^{-lam_slow t} (relative, away from their zeros) in the closed-form
+    branch, and in the Taylor branch (where they are 1 - omc, t - tms, 1 - omsd) to a
+    few ulps of 1, t and 1 respectively (absolute; e.g. S(2) at mu = 1 is 4 ulps of S off).
     """
     if params[P_RHO] * t <= SERIES_Q:
         omc, tms, omsd = _series_parts(t, params[P_RHO], params[P_TSCALE], coefs)
