@@ -381,7 +381,10 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             scale_v = min(abs(u) + gamma * h, abs(v) + xidd0 * h)
             if tx <= TOL_LONG * scale_x and tv <= TOL_LONG * scale_v:
                 break
-            theta *= 0.7
+            # tx ~ theta^(K+1), tv ~ theta^K: shrink to where they meet this theta's scales (which
+            # shrink with theta too, hence the loop), by at least 2% and at most 10x per pass
+            fit = min((TOL_LONG * scale_x / tx) ** (1.0 / (K + 1.0)), (TOL_LONG * scale_v / tv) ** (1.0 / K))
+            theta *= max(min(fit, 0.98), 0.1)
         h = theta * radius
         last = t + h >= t_limit
         if last:

@@ -27,11 +27,11 @@ the linear law (a = b = 0) is then analytic through xi = 0 and loses no digit to
 division by |xi0|.
 
 Rigorous tail (Cauchy's majorant argument).  Let D be the closed polydisc
-|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.8 |xi0| (so sigma z keeps a
+|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.95 |xi0| (so sigma z keeps a
 positive real part and (S) is holomorphic in D; any Rz for a = b = 0).  On D the
 right side of (S) is bounded by M = M0 + M1 Rp with
 
-    M0 = c0 + r (1.8 |xi0|)^(a+1) + 2 m |v0| (1.8 |xi0|)^b,   M1 = 2 m (1.8 |xi0|)^b
+    M0 = c0 + r (1.95 |xi0|)^(a+1) + 2 m |v0| (1.95 |xi0|)^b,   M1 = 2 m (1.95 |xi0|)^b
 
 (|w^p| = |w|^p on the principal branch).  Along every complex ray t = s e^(i phi)
 the solution cannot leave D before s = r_c = min(Rz / (|v0| + Rp), Rp / M), so it
@@ -53,8 +53,9 @@ from decimal import Decimal, localcontext
 import numpy as np
 from numba import njit
 
-#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|).
-DISC = 0.8
+#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|): the
+#: step near xi = 0 is ~ theta DISC |xi0| / |xi'|, the majorant grows only as (1 + DISC)^(a+1).
+DISC = 0.95
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
