@@ -101,7 +101,10 @@ TOL = 2.0**-55
 #: to step), so over the ~1e4 steps of a long flight through many xi = 0 crossings 2^-55 per
 #: step would add up to ~1e-13; 2^-64 keeps the sum below 2^-50 of the scale.
 TOL_LONG = 2.0**-64
-#: cap on evaluations per flight (a crawl towards a tangency needs ~1e3).
+#: cap on evaluations within one series step (a crawl towards a tangency needs ~1e3).  The steps of
+#: a flight are not capped: psi is a free fall, so a flight is finite, and its series steps number
+#: ~1e2 per crossing of xi = 0 (a long flight of a weakly damped spring crosses it thousands of
+#: times); a step that does not advance time (or a NaN state) is FAILED.
 MAX_EVALS = 400_000
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
@@ -295,7 +298,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     x'(t_limit), x(t_limit), eta(t_limit), xi'(t_limit), 0, 0), the state there for the
     dense output of :mod:`bounce.sampling`), AT_REST (x = u = 0 and the mass stays,
     :func:`at_rest_is_sticky`; then the last two fields are F and F') or FAILED
-    (evaluation cap, or a floor contact inside a crossing window).  The state is carried
+    (evaluation cap within a step, a step that does not advance time, a lift-off not resolved).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
     that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
     ``lifting``: the caller knows that a start at rest lifts off (dense output of a recorded
@@ -311,8 +314,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     t_hi, t_lo = 0.0, 0.0
     xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
     B = math.inf
-    evals = 0
-    while evals < MAX_EVALS:
+    while True:
         t = t_hi + t_lo
         xi0 = xi_eq + eta
         w0 = abs(xi0)
@@ -367,8 +369,9 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             u, ul = compensated_add(u, ul, -gamma * T - dv)
             eta, el = compensated_add(eta, el, d + vl * T)
             v, vl = compensated_add(v, vl, dv)
+            if not T > 0.0:
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, T)
-            evals += 1
             continue
         radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         xidd0 = abs(rho * p0 + 2.0 * mu * v * q0 * (1.0 if xi0 >= 0.0 else -1.0))  # |xi''(0)|
@@ -386,6 +389,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             fit = min((TOL_LONG * scale_x / tx) ** (1.0 / (K + 1.0)), (TOL_LONG * scale_v / tv) ** (1.0 / K))
             theta *= max(min(fit, 0.98), 0.1)
         h = theta * radius
+        if not h > 0.0:
+            return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         last = t + h >= t_limit
         if last:
             h = t_limit - t
@@ -402,8 +407,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
         D, Dp = 0.0, 0.0
-        while evals < MAX_EVALS:
-            evals += 1
+        for _ in range(MAX_EVALS):
             s_new = s + safe_step(xs, vs, B)
             at_end = s_new >= h
             if at_end:
@@ -423,6 +427,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                     return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X, start)
             if at_end:
                 break
+        else:
+            return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         if last:  # xs, vs, D, Dp are at s = h: the state at t_limit (for dense output)
             return HORIZON, t_limit, vs, xs, eta + ((v * h + D) + (el + vl * h)), (v + Dp) + vl, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
@@ -430,7 +436,6 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
         eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
         v, vl = compensated_add(v, vl, Dp)
         t_hi, t_lo = compensated_add(t_hi, t_lo, h)
-    return FAILED, t_hi + t_lo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
 @njit(cache=True)
