@@ -74,3 +74,28 @@ def test_drop_transient_flights_match_reference(xi0):
         with mp.workdps(60):
             eta_ref = float(ref["xi"] - mpf(xi_eq))
         assert abs(tr.eta[i] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (i, tr.eta[i], eta_ref)
+
+
+@pytest.mark.parametrize("spring", [PowerSpring(0.5, 0.25, 1.0), PowerSpring(1.0, 0.0, 0.5), PowerSpring(1.0, 0.5, 1.5),
+                                    PowerSpring(2.0, 0.25, 0.25)], ids=lambda s: f"rho{s.rho}_a{s.a}_b{s.b}")
+def test_flight_through_many_crossings_matches_reference(spring):
+    """A flight of ~15 time units whose spring crosses its rest length xi = 0 3-5 times (the
+    first-order crossing windows of power_flight for b > 0, b <= 1 and b > 1), to 1e-14."""
+    gamma, mu = 0.05, 0.05
+    x, u, a = 0.0, 0.1, 0.3
+    xi_eq = float(law_array(spring.rho, spring.a, spring.b, mu, gamma)[L_XI_EQ])
+    eta = 0.05 - xi_eq
+    tr = simulate_power(Parameters(gamma, mu, spring), spring, Deviations(x=x, xdot=u, xidot=a, eta=eta),
+                        max_events=1)
+    with mp.workdps(60):
+        xi0 = mpf(xi_eq) + mpf(eta)
+    ref = PR.reference_first_impact(gamma, mu, spring.rho, spring.a, spring.b, x, u, a, xi0)
+    assert tr.kind[0] == 0
+    tau = float(ref["tau"])
+    assert tau > 10.0
+    assert abs(tr.tau[0] - tau) <= REL * tau, (tr.tau[0], tau)
+    assert abs(tr.xdot[0] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (tr.xdot[0], ref["xdot"])
+    assert abs(tr.xidot[0] - float(ref["xidot"])) <= REL * (abs(u) + abs(a) + gamma * tau), (tr.xidot[0], ref["xidot"])
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(xi_eq))
+    assert abs(tr.eta[0] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (tr.eta[0], eta_ref)
