@@ -240,7 +240,8 @@ def _wide_window_ok(delta, v, Es, law):
 
     On the window |xi| <= W = 1.01 delta, |xi''| <= F = rho W^(a+1) + 2 mu V W^b (V = sqrt(2 E_s)),
     and it lasts T <= 2 delta/|v|, so the true path leaves the line l(s) = xi0 + v s by at most
-    E0 = F T^2/2 in xi and E1 = F T in xi' (E0 <= delta/100 keeps |xi| <= W).  The force along the
+    E0 = F T^2/2 in xi and E1 = F T in xi' (E0 <= delta/100 keeps |xi| <= W and gives
+    E1 <= |v|/100: xi' keeps its sign, the line's sweep is monotone).  The force along the
     true path differs from the one along the line (xi' = v) by at most
     rho (a+1) W^a E0 + 2 mu E1 W^b + 2 mu V ||xi|^b - |l|^b|, and the last term integrated over
     the window (l sweeps [-W, W] at most once at speed |v|) is <= 2 mu V I / |v| with, for b <= 1,
