@@ -42,6 +42,7 @@ Run (results printed as a table and written as JSON, default ``results/timing/be
 
     python benchmarks/bench_power.py                       # Hertz, 1e7 impacts for the skip check
     python benchmarks/bench_power.py --long 0 --repeats 3  # quick: no long run
+    python benchmarks/bench_power.py --windows-only 1000   # only the transient windows of both drops
 """
 
 from __future__ import annotations
@@ -202,11 +203,15 @@ def scene_row(name, params, scene, initial, args) -> dict:
     return row
 
 
-def drop_windows(params, drop, repeats) -> list:
-    """impacts/s of both solvers on the windows [WINDOWS[i], WINDOWS[i+1]) of the drop (docstring, item 1)."""
-    tr = simulate(params, drop, max_events=WINDOWS[-1])
+def drop_windows(params, drop, repeats, last=WINDOWS[-1]) -> list:
+    """impacts/s of both solvers on the windows [WINDOWS[i], WINDOWS[i+1]) of the drop up to impact
+    ``last`` (docstring, item 1)."""
+    edges = [w for w in WINDOWS if w <= last]
+    tr = simulate(params, drop, max_events=edges[-1])
+    HT.run(params, drop, {}, max_events=10)  # compile heyoka's integrator once (reused after)
+    simulate(params, drop, max_events=10)  # numba: loaded from cache, warmed
     out = []
-    for lo, hi in zip(WINDOWS[:-1], WINDOWS[1:]):
+    for lo, hi in zip(edges[:-1], edges[1:]):
         start = drop if lo == 0 else post_impact(tr, lo - 1)
         r = HT.run(params, start, {}, max_events=hi - lo)
         row = {"from": lo, "to": hi, "x_dot_at_start": float(tr.xdot[max(lo - 1, 0)]),
@@ -270,6 +275,14 @@ def run_law(name, args) -> dict:
     params = law_parameters(name)
     rho, a, b = LAWS[name]
     alpha = nonlin_alpha_limit(GAMMA, MU, rho, a, b)
+    if args.windows_only:
+        drops = {"drop": State.from_psi_xi(6.0, 0.0, params.xi_eq if name != "linear" else 0.0, 0.0)}
+        if name != "linear":
+            drops["paper drop"] = State.from_psi_xi(6.0, 0.0, 0.0, 0.0)
+        return {"law": {"rho": rho, "a": a, "b": b}, "alpha": alpha, "rows": {}, "long": None, "cooldown": {},
+                "drop_windows": drop_windows(params, drops["drop"], args.repeats, args.windows_only),
+                "paper_drop_windows": (drop_windows(params, drops["paper drop"], args.repeats, args.windows_only)
+                                       if "paper drop" in drops else [])}
     all_scenes = scenes(name, params)
     rows = {scene: scene_row(name, params, scene, init, args) for scene, init in all_scenes.items()}
     drop = all_scenes["drop"]
@@ -320,11 +333,14 @@ def print_report(res: dict, notes: list) -> None:
             print(f"{scene:11s} {row['same_impacts']:7d} {_r(b.get('impacts_per_s_same')):33s} "
                   f"{_r(h.get('impacts_per_s')):33s} {row.get('ratio', math.nan):6.1f} "
                   f"{_e(o['bounce_max']):>10s} {_e(o['heyoka_max']):>10s}  {out}")
-        print("drop by windows of impact index (both from bounce's exact state at the window's start):")
-        for w in r["drop_windows"]:
-            print(f"  impacts [{w['from']:6d}, {w['to']:6d}) x' at start {w['x_dot_at_start']:.1e}: bounce "
-                  f"{_r(w['bounce'])}, heyoka {_r(w.get('heyoka'))}, ratio {w.get('ratio', math.nan):.2g}"
-                  + (f" (heyoka {w['heyoka_failure']})" if w["heyoka_failure"] else ""))
+        for key in ("drop_windows", "paper_drop_windows"):
+            if r.get(key):
+                print(f"{key.replace('_windows', '')} by windows of impact index (both from bounce's exact state "
+                      "at the window's start):")
+            for w in r.get(key, []):
+                print(f"  impacts [{w['from']:6d}, {w['to']:6d}) x' at start {w['x_dot_at_start']:.1e}: bounce "
+                      f"{_r(w['bounce'])}, heyoka {_r(w.get('heyoka'))}, ratio {w.get('ratio', math.nan):.2g}"
+                      + (f" (heyoka {w['heyoka_failure']})" if w["heyoka_failure"] else ""))
         for scene, row in r["rows"].items():
             b = row["bounce"]
             print(f"bounce alone, {scene}: {b['impacts']} impacts, {_r(b['impacts_per_s'])} impacts/s, "
@@ -343,7 +359,8 @@ def print_report(res: dict, notes: list) -> None:
                 f"fails at x' = {s['u']:g} (drop impact n ~ {s['drop_impact_index']:.1e}): "
                 f"{s['failure']}@{s['index']} {s['reason'][:80]}")
             print(f"cooldown {c:>6s}: {along}\n{'':17s}depth scan: {scan}")
-        print(f"best cooldown setting: {r['best_cooldown']}")
+        if r["cooldown"]:
+            print(f"best cooldown setting: {r['best_cooldown']}")
 
 
 def main(argv=None):
@@ -353,6 +370,8 @@ def main(argv=None):
     ap.add_argument("--heyoka-events", type=int, default=20_000, help="impacts timed for both (default 2e4)")
     ap.add_argument("--repeats", type=int, default=5, help="timing repeats (default 5)")
     ap.add_argument("--long", type=int, default=10_000_000, help="bounce impacts of the skip check (0: none)")
+    ap.add_argument("--windows-only", type=int, default=0, metavar="N",
+                    help="only the drop windows (both drops) up to impact N, e.g. 1000 (default 0: full run)")
     ap.add_argument("--json", type=Path, default=ROOT / "results" / "timing" / "bench_power.json")
     args = ap.parse_args(argv)
     wall = time.time()

@@ -289,3 +289,23 @@ def test_lift_off_from_rest_with_a_stretched_spring(spring):
     assert tr.kind[0] == IMPACT and tr.tau[0] > 0.0
     low, _ = dense_min_x(spring, gamma, mu, 0.0, 0.0, xi, 0.0, float(tr.tau[0]))
     assert low >= -1e-9
+
+
+@pytest.mark.parametrize("mu", [0.0, 1e-3])
+def test_long_flight_of_a_weakly_damped_spring_is_not_capped(mu):
+    """A ~6e4-long Hertz flight (gamma = 1e-5, x(0) = 2e4) whose spring crosses xi = 0 ~3e3 times
+    (~1e5 series steps, beyond the old per-flight cap of 4e5 evaluations for mu = 0) ends in an
+    impact with psi a free fall to rounding, gamma tau^2/2 = psi(0) - xi(tau), and, for mu = 0, the
+    spring energy xi'^2/2 + |xi|^(5/2)/(5/2) of the flight conserved (measured: ~1e-12 relative)."""
+    gamma, x0 = 1e-5, 2e4
+    xi_eq = HERTZ.xi_eq(gamma)
+    tr = one_flight(Parameters(gamma, mu, HERTZ), HERTZ, 0.0, 0.0, 0.0, x=x0)
+    assert tr.kind[0] == IMPACT and tr.stop_reason == "max_events"
+    tau = tr.tau[0]
+    xi_end = xi_eq + tr.eta[0]
+    assert abs(0.5 * gamma * tau * tau - ((x0 + xi_eq) - xi_end)) <= 4e-16 * x0
+    if mu == 0.0:
+        v_end = tr.xidot[0] + tr.xdot[0]  # xi'(tau-) = psi'(tau-) - x'(tau-), both recorded after the exchange
+        e0 = abs(xi_eq) ** 2.5 / 2.5
+        e1 = 0.5 * v_end * v_end + abs(xi_end) ** 2.5 / 2.5
+        assert abs(e1 - e0) <= 1e-11 * e0, (e1 - e0) / e0

@@ -11,13 +11,14 @@ import pytest
 from mpmath import mp, mpf
 
 import power_reference as PR
-from bounce import Deviations, Parameters
+from bounce import Deviations, Parameters, State
 from bounce.power_events import simulate_power
 from bounce.power_series import L_XI_EQ, law_array
 from bounce.springs.power import PowerSpring
 
 REL = 1e-14
-LAWS = [PowerSpring(1.0, 0.5, 0.5), PowerSpring(2.0, 1.0, 0.0), PowerSpring(0.5, 0.25, 1.0)]
+LAWS = [PowerSpring(1.0, 0.5, 0.5), PowerSpring(2.0, 1.0, 0.0), PowerSpring(0.5, 0.25, 1.0),
+        PowerSpring(1.5, 0.25, 0.25)]  # a = b != 1/2: the equal-powers recurrence with Miller's power
 # (x, xdot, xidot, eta): from the floor, moderately excited; and deep near equilibrium
 STARTS = {
     "excited": (0.0, 0.3, 0.1, 0.02),
@@ -46,4 +47,55 @@ def test_first_impact_matches_reference(spring, start, gamma, mu):
     assert abs(tr.xidot[0] - float(ref["xidot"])) <= REL * a_scale, (tr.xidot[0], ref["xidot"])
     with mp.workdps(60):
         eta_ref = float(ref["xi"] - mpf(xi_eq))  # xi(tau) - xi_eq, rounded once
+    assert abs(tr.eta[0] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (tr.eta[0], eta_ref)
+
+
+@pytest.mark.parametrize("xi0", ["rest_length", "static"])
+def test_drop_transient_flights_match_reference(xi0):
+    """The Hertz drop of benchmarks/bench_power.py (gamma = mu = 0.01, psi(0) = 6, xi(0) = 0 or xi_eq):
+    its first four flights, long ones through many crossings of xi = 0 among them (~70 time units,
+    ~2e3 series steps), each from bounce's own float64 state, against the reference to 1e-14."""
+    gamma = mu = 0.01
+    spring = PowerSpring(1.0, 0.5, 0.5)
+    params = Parameters(gamma, mu, spring)
+    xi_eq = float(law_array(1.0, 0.5, 0.5, mu, gamma)[L_XI_EQ])
+    drop = State.from_psi_xi(6.0, 0.0, 0.0 if xi0 == "rest_length" else params.xi_eq, 0.0)
+    tr = simulate_power(params, spring, drop, max_events=4)
+    assert list(tr.kind) == [0, 0, 0, 0]
+    for i in range(1, 4):
+        x, u, a, eta = 0.0, float(tr.xdot[i - 1]), float(tr.xidot[i - 1]), float(tr.eta[i - 1])
+        with mp.workdps(60):
+            xi = mpf(xi_eq) + mpf(eta)
+        ref = PR.reference_first_impact(gamma, mu, 1.0, 0.5, 0.5, x, u, a, xi)
+        tau = float(ref["tau"])
+        assert abs(tr.tau[i] - tau) <= REL * tau, (i, tr.tau[i], tau)
+        assert abs(tr.xdot[i] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (i, tr.xdot[i], ref["xdot"])
+        assert abs(tr.xidot[i] - float(ref["xidot"])) <= REL * (abs(u) + abs(a) + gamma * tau), (i, tr.xidot[i])
+        with mp.workdps(60):
+            eta_ref = float(ref["xi"] - mpf(xi_eq))
+        assert abs(tr.eta[i] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (i, tr.eta[i], eta_ref)
+
+
+@pytest.mark.parametrize("spring", [PowerSpring(0.5, 0.25, 1.0), PowerSpring(1.0, 0.0, 0.5), PowerSpring(1.0, 0.5, 1.5),
+                                    PowerSpring(2.0, 0.25, 0.25)], ids=lambda s: f"rho{s.rho}_a{s.a}_b{s.b}")
+def test_flight_through_many_crossings_matches_reference(spring):
+    """A flight of ~15 time units whose spring crosses its rest length xi = 0 3-5 times (the
+    first-order crossing windows of power_flight for b > 0, b <= 1 and b > 1), to 1e-14."""
+    gamma, mu = 0.05, 0.05
+    x, u, a = 0.0, 0.1, 0.3
+    xi_eq = float(law_array(spring.rho, spring.a, spring.b, mu, gamma)[L_XI_EQ])
+    eta = 0.05 - xi_eq
+    tr = simulate_power(Parameters(gamma, mu, spring), spring, Deviations(x=x, xdot=u, xidot=a, eta=eta),
+                        max_events=1)
+    with mp.workdps(60):
+        xi0 = mpf(xi_eq) + mpf(eta)
+    ref = PR.reference_first_impact(gamma, mu, spring.rho, spring.a, spring.b, x, u, a, xi0)
+    assert tr.kind[0] == 0
+    tau = float(ref["tau"])
+    assert tau > 10.0
+    assert abs(tr.tau[0] - tau) <= REL * tau, (tr.tau[0], tau)
+    assert abs(tr.xdot[0] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (tr.xdot[0], ref["xdot"])
+    assert abs(tr.xidot[0] - float(ref["xidot"])) <= REL * (abs(u) + abs(a) + gamma * tau), (tr.xidot[0], ref["xidot"])
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(xi_eq))
     assert abs(tr.eta[0] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (tr.eta[0], eta_ref)

@@ -60,6 +60,16 @@ window that may contain the floor contact stops the same way (SLOW_CROSSING: for
 ordinary crossings the window is at most ~1e-6 long, so this happens only when
 the spring creeps through its rest length, e.g. |xi'| ~ 1e-17 at xi = 0).
 
+First-order windows (b > 0; the damping is what makes the window above narrow, ~1e-12 for
+Hertz).  Away from the floor, the crossing is taken as one window of half-width delta_1 >= 2|xi|
+(doubled while allowed) with the force integrated once and twice along the line
+xi0 + v s in closed form (:func:`_wide_window_change`), so only the force's change along the
+true path is neglected; :func:`_wide_window_ok` bounds that change (Lipschitz for the restoring
+force, Hoelder for |xi|^b, b <= 1, integrated over the sweep of the line through xi = 0) by
+2^-56 |v| in xi' and 2^-56 |v| T in xi: exact to rounding like the window above, and ~1e-5 wide
+for Hertz at |v| ~ 0.3, which takes ~6 decades of geometric series steps off every crossing.
+A first-order window that may contain the floor contact or t_limit is not taken (series steps).
+
 Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
@@ -101,7 +111,10 @@ TOL = 2.0**-55
 #: to step), so over the ~1e4 steps of a long flight through many xi = 0 crossings 2^-55 per
 #: step would add up to ~1e-13; 2^-64 keeps the sum below 2^-50 of the scale.
 TOL_LONG = 2.0**-64
-#: cap on evaluations per flight (a crawl towards a tangency needs ~1e3).
+#: cap on evaluations within one series step (a crawl towards a tangency needs ~1e3).  The steps of
+#: a flight are not capped: psi is a free fall, so a flight is finite, and its series steps number
+#: ~1e2 per crossing of xi = 0 (a long flight of a weakly damped spring crosses it thousands of
+#: times); a step that does not advance time (or a NaN state) is FAILED.
 MAX_EVALS = 400_000
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
@@ -222,6 +235,74 @@ def crossing_halfwidth(v, Es, law):
 
 
 @njit(cache=True)
+def _wide_window_ok(delta, v, Es, law):
+    """Is the first-order crossing window of half-width delta exact to rounding (b > 0; module docstring)?
+
+    On the window |xi| <= W = 1.01 delta, |xi''| <= F = rho W^(a+1) + 2 mu V W^b (V = sqrt(2 E_s)),
+    and it lasts T <= 2 delta/|v|, so the true path leaves the line l(s) = xi0 + v s by at most
+    E0 = F T^2/2 in xi and E1 = F T in xi' (E0 <= delta/100 keeps |xi| <= W and gives
+    E1 <= |v|/100: xi' keeps its sign, the line's sweep is monotone).  The force along the
+    true path differs from the one along the line (xi' = v) by at most
+    rho (a+1) W^a E0 + 2 mu E1 W^b + 2 mu V ||xi|^b - |l|^b|, and the last term integrated over
+    the window (l sweeps [-W, W] at most once at speed |v|) is <= 2 mu V I / |v| with, for b <= 1,
+    I = 4 E0^(1+b) (where |l| <= 2 E0: Hoelder, ||x|^b - |y|^b| <= |x - y|^b) + 2^(2-b) E0 W^b
+    (elsewhere: b (|l|/2)^(b-1) E0, integrated over l), and for b > 1 I = b W^(b-1) E0 |v| T.
+    The neglected change of xi' is then <= DV = (rho (a+1) W^a E0 + 2 mu E1 W^b) T + 2 mu V I/|v|
+    and that of xi <= DV T; DV <= 2^-56 |v| makes them <= 2^-56 |v| and 2^-56 |v| T, below
+    the zeroth-order window's.
+    """
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    a = law[L_AP1] - 1.0
+    b = law[L_B]
+    av = abs(v)
+    if not (av > 0.0 and delta > 0.0):
+        return False
+    W = 1.01 * delta
+    V = math.sqrt(2.0 * Es) * MARGIN
+    T = 2.0 * delta / av
+    Wa = W**a if a > 0.0 else 1.0
+    Wb = W**b
+    F = (rho * Wa * W + 2.0 * mu * V * Wb) * MARGIN
+    E0 = 0.5 * F * T * T
+    E1 = F * T
+    if b <= 1.0:
+        sweep = 4.0 * E0 * E0**b + 2.0 ** (2.0 - b) * E0 * Wb
+    else:
+        sweep = b * W ** (b - 1.0) * E0 * av * T
+    DV = ((rho * (a + 1.0) * Wa * E0 + 2.0 * mu * E1 * Wb) * T + 2.0 * mu * V * sweep / av) * MARGIN
+    return E0 <= 0.01 * delta and DV <= 2.0**-56 * av
+
+
+@njit(cache=True)
+def _wide_window_change(T, xi0, v, law):
+    """(e, dv): the first-order change of xi beyond xi0 + v T, and of xi', over a window of length T.
+
+    The force r(xi) + 2 mu xi' |xi|^b (r = rho xi |xi|^a) integrated once and twice along the
+    line l(s) = xi0 + v s with xi' = v, by the antiderivatives in xi
+    R1 = |xi|^(a+2)/(a+2), R2 = xi |xi|^(a+2)/((a+2)(a+3)), G1 = xi |xi|^b/(b+1),
+    G2 = |xi|^(b+2)/((b+1)(b+2)):
+    dv = -(rho (R1(l_T) - R1(xi0))/v + 2 mu (G1(l_T) - G1(xi0))),
+    e = -(rho (R2(l_T) - R2(xi0) - v T R1(xi0))/v^2 + 2 mu (G2(l_T) - G2(xi0) - v T G1(xi0))/v).
+    Their error is bounded in :func:`_wide_window_ok`.
+    """
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    ap2 = law[L_AP1] + 1.0
+    bp1 = law[L_B] + 1.0
+    lT = xi0 + v * T
+    w0, wT = abs(xi0), abs(lT)
+    R1_0, R1_T = w0**ap2 / ap2, wT**ap2 / ap2
+    R2_0, R2_T = xi0 * R1_0 / (ap2 + 1.0), lT * R1_T / (ap2 + 1.0)
+    G1_0, G1_T = xi0 * w0 ** law[L_B] / bp1, lT * wT ** law[L_B] / bp1
+    G2_0, G2_T = w0 * G1_0 * (1.0 if xi0 >= 0.0 else -1.0) / (bp1 + 1.0), wT * G1_T * (1.0 if lT >= 0.0 else -1.0) / (bp1 + 1.0)
+    vT = v * T
+    dv = -(rho * (R1_T - R1_0) / v + 2.0 * mu * (G1_T - G1_0))
+    e = -(rho * ((R2_T - R2_0) - vT * R1_0) / (v * v) + 2.0 * mu * ((G2_T - G2_0) - vT * G1_0) / v)
+    return e, dv
+
+
+@njit(cache=True)
 def _evaluate(s, x, xl, u, ul, gamma, H, K, X):
     """x(s), x'(s) and the rounding scale of x by eq. (P); also D(s), D'(s).
 
@@ -295,7 +376,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     x'(t_limit), x(t_limit), eta(t_limit), xi'(t_limit), 0, 0), the state there for the
     dense output of :mod:`bounce.sampling`), AT_REST (x = u = 0 and the mass stays,
     :func:`at_rest_is_sticky`; then the last two fields are F and F') or FAILED
-    (evaluation cap, or a floor contact inside a crossing window).  The state is carried
+    (evaluation cap within a step, a step that does not advance time, a lift-off not resolved).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
     that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
     ``lifting``: the caller knows that a start at rest lifts off (dense output of a recorded
@@ -311,8 +392,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     t_hi, t_lo = 0.0, 0.0
     xl, ul, el, vl = 0.0, 0.0, 0.0, 0.0
     B = math.inf
-    evals = 0
-    while evals < MAX_EVALS:
+    while True:
         t = t_hi + t_lo
         xi0 = xi_eq + eta
         w0 = abs(xi0)
@@ -331,6 +411,23 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         delta = crossing_halfwidth(v, Es, law) if singular else 0.0
+        if (singular and law[L_ANALYTIC_B] == 0.0 and w0 > 0.5 * delta and not (x == 0.0 and u == 0.0)
+                and _wide_window_ok(2.0 * w0, v, Es, law)):
+            wide = 2.0 * w0
+            for _ in range(64):
+                if not _wide_window_ok(2.0 * wide, v, Es, law):
+                    break
+                wide *= 2.0
+            d = (wide if v > 0.0 else -wide) - xi0
+            T = d / v
+            if t + T < t_limit and safe_step(x + xl, u + ul, B) > T:
+                e, dv = _wide_window_change(T, xi0, v, law)
+                x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + (((v * T - d) - e) + ul * T))
+                u, ul = compensated_add(u, ul, -gamma * T - dv)
+                eta, el = compensated_add(eta, el, (d + e) + vl * T)
+                v, vl = compensated_add(v, vl, dv)
+                t_hi, t_lo = compensated_add(t_hi, t_lo, T)
+                continue
         if singular and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
             d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
             if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
@@ -367,8 +464,9 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             u, ul = compensated_add(u, ul, -gamma * T - dv)
             eta, el = compensated_add(eta, el, d + vl * T)
             v, vl = compensated_add(v, vl, dv)
+            if not T > 0.0:
+                return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, T)
-            evals += 1
             continue
         radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         xidd0 = abs(rho * p0 + 2.0 * mu * v * q0 * (1.0 if xi0 >= 0.0 else -1.0))  # |xi''(0)|
@@ -381,8 +479,13 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             scale_v = min(abs(u) + gamma * h, abs(v) + xidd0 * h)
             if tx <= TOL_LONG * scale_x and tv <= TOL_LONG * scale_v:
                 break
-            theta *= 0.7
+            # tx ~ theta^(K+1), tv ~ theta^K: shrink to where they meet this theta's scales (which
+            # shrink with theta too, hence the loop), by at least 2% and at most 10x per pass
+            fit = min((TOL_LONG * scale_x / tx) ** (1.0 / (K + 1.0)), (TOL_LONG * scale_v / tv) ** (1.0 / K))
+            theta *= max(min(fit, 0.98), 0.1)
         h = theta * radius
+        if not h > 0.0:
+            return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         last = t + h >= t_limit
         if last:
             h = t_limit - t
@@ -399,8 +502,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             xs, vs, _, _, _ = _evaluate(s, x, xl, u, ul, gamma, radius, K, X)
         D, Dp = 0.0, 0.0
-        while evals < MAX_EVALS:
-            evals += 1
+        for _ in range(MAX_EVALS):
             s_new = s + safe_step(xs, vs, B)
             at_end = s_new >= h
             if at_end:
@@ -420,6 +522,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                     return _contact(t_hi, t_lo, sm, vm, sc_m, eta, el, v, vl, gamma, Dm, Dpm, radius, K, X, start)
             if at_end:
                 break
+        else:
+            return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         if last:  # xs, vs, D, Dp are at s = h: the state at t_limit (for dense output)
             return HORIZON, t_limit, vs, xs, eta + ((v * h + D) + (el + vl * h)), (v + Dp) + vl, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
@@ -427,7 +531,6 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
         eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
         v, vl = compensated_add(v, vl, Dp)
         t_hi, t_lo = compensated_add(t_hi, t_lo, h)
-    return FAILED, t_hi + t_lo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
 @njit(cache=True)

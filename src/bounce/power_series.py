@@ -27,11 +27,11 @@ the linear law (a = b = 0) is then analytic through xi = 0 and loses no digit to
 division by |xi0|.
 
 Rigorous tail (Cauchy's majorant argument).  Let D be the closed polydisc
-|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.8 |xi0| (so sigma z keeps a
+|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.95 |xi0| (so sigma z keeps a
 positive real part and (S) is holomorphic in D; any Rz for a = b = 0).  On D the
 right side of (S) is bounded by M = M0 + M1 Rp with
 
-    M0 = c0 + r (1.8 |xi0|)^(a+1) + 2 m |v0| (1.8 |xi0|)^b,   M1 = 2 m (1.8 |xi0|)^b
+    M0 = c0 + r (1.95 |xi0|)^(a+1) + 2 m |v0| (1.95 |xi0|)^b,   M1 = 2 m (1.95 |xi0|)^b
 
 (|w^p| = |w|^p on the principal branch).  Along every complex ray t = s e^(i phi)
 the solution cannot leave D before s = r_c = min(Rz / (|v0| + Rp), Rp / M), so it
@@ -53,8 +53,9 @@ from decimal import Decimal, localcontext
 import numpy as np
 from numba import njit
 
-#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|).
-DISC = 0.8
+#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|): the
+#: step near xi = 0 is ~ theta DISC |xi0| / |xi'|, the majorant grows only as (1 + DISC)^(a+1).
+DISC = 0.95
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
@@ -167,6 +168,9 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[0] = xi0
     X[1] = v0 * H
     H2 = H * H
+    if ap1 == b + 1.0 and not lin_b:
+        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q)
+        return
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
     for k in range(0, K - 1):
@@ -193,6 +197,47 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
                 damp += (j + 1) * X[j + 1] * Q[k - j]
         force = f0 if k == 0 else r * P[k]
         X[k + 2] = -(H2 * force + 2.0 * m * H * damp) * INV[k + 1] * INV[k + 2]
+
+
+@njit(cache=True)
+def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
+    """:func:`taylor_coefficients` for a = b > 0 (Hertz among them): one power, one product.
+
+    Then r xi |xi|^a + 2 m xi' |xi|^b = (r xi + 2 m xi') Q with Q = |xi|^b, so for k >= 1
+
+        (k+1)(k+2) X_{k+2} = -(1/H) sum_{j=0..k} (H^2 r X_j + 2 m H (j+1) X_{j+1}) Q_{k-j}
+
+    (X_k in units of H; for k = 0 the restoring part is f0, as in the general case), one
+    Cauchy sum instead of a Miller recurrence for |xi|^(a+1) plus one for the damping.  For
+    b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
+    (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
+    Same coefficients up to the rounding of the sums (a few ulps times the degree).
+    """
+    H2 = H * H
+    Q[0] = q0
+    half = b == 0.5
+    inv_2q0 = 0.5 / q0
+    for k in range(0, K - 1):
+        if k >= 1:
+            if half:
+                s = 0.0
+                for j in range(1, (k + 1) // 2):
+                    s += Q[j] * Q[k - j]
+                s *= 2.0
+                if k % 2 == 0:
+                    s += Q[k // 2] * Q[k // 2]
+                Q[k] = (sigma * X[k] - s) * inv_2q0
+            else:
+                s = 0.0
+                for j in range(1, k + 1):
+                    s += (b * j - (k - j)) * X[j] * Q[k - j]
+                Q[k] = s * inv_xi0 * INV[k]
+            acc = 0.0
+            for j in range(0, k + 1):
+                acc += (H2 * r * X[j] + 2.0 * m * H * (j + 1) * X[j + 1]) * Q[k - j]
+        else:
+            acc = H2 * f0 + 2.0 * m * H * X[1] * q0
+        X[k + 2] = -acc * INV[k + 1] * INV[k + 2]
 
 
 @njit(cache=True)
