@@ -13,7 +13,7 @@ import os
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from mpmath import mp, mpf
 from scipy.integrate import solve_ivp
@@ -183,6 +183,7 @@ def test_sticky_phase_crossing_the_rest_length():
 @given(xi_over_eq=st.floats(-0.9, 1.7), v=st.floats(-0.4, 0.4), mu=st.sampled_from([0.0, 0.1, 0.5, 1.0]),
        gamma=st.sampled_from([0.01, 0.05]), spring=st.sampled_from([HERTZ, PowerSpring(2.0, 1.0, 0.0),
                                                                      PowerSpring(0.5, 0.25, 1.0)]))
+@example(xi_over_eq=0.0, v=0.390625, mu=1.0, gamma=0.01, spring=HERTZ)  # detach at xi = 1.6e-4: was a zero-length loop
 def test_sticky_records_follow_the_rules(xi_over_eq, v, mu, gamma, spring):
     """From any rest state on the floor: a sticky phase is recorded iff the mass stays
     (at_rest_is_sticky); it ends in a detach (x' = 0, F = 0 to rounding, F' >= 0) or a stop;
@@ -201,6 +202,8 @@ def test_sticky_records_follow_the_rules(xi_over_eq, v, mu, gamma, spring):
             assert abs(F) <= noise_F and Fp >= -noise_Fp, (F, Fp, noise_F, noise_Fp)
         if k == STICKY_START:
             assert tr.xdot[i] == 0.0
+            # never straight back onto the floor at the detach's own instant (a zero-length sticky loop)
+            assert not (i > 0 and tr.kind[i - 1] == DETACH and tr.t[i] == tr.t[i - 1])
     e = tr.energy_excess
     assert np.all(np.diff(e) <= 1e-12 * np.maximum(e[:-1], gamma**2))
 

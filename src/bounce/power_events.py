@@ -57,7 +57,8 @@ from .events import (
     compensated_add,
 )
 from .flight import FOUND, HORIZON, NEVER
-from .power_flight import AT_REST, HANDOVER, SLOW_CROSSING, at_rest_is_sticky, first_contact, short_flight
+from .power_flight import (AT_REST, HANDOVER, SLOW_CROSSING, at_rest_is_sticky, first_contact, floor_force,
+                           short_flight)
 from .power_sticky import sticky_phase
 from .power_series import DEGREE_LONG, L_GAMMA, L_XI_EQ, bregman, law_array
 
@@ -102,6 +103,7 @@ def run_power_events(
     n = 0
     stop = STOP_EVENTS
     sticky = False
+    kind = -1  # the last recorded event's kind (none yet)
     if x0 == 0.0 and u == 0.0 and at_rest_is_sticky(a, eta, law):
         sticky = True
         _record(0, 0.0, 0.0, STICKY_START, u, a, eta, law, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
@@ -126,7 +128,15 @@ def run_power_events(
                     stop = STOP_TIME
                     break
             if status == HANDOVER:
-                status, tau, v, scale, eta_t, xid_t, acc, jerk = first_contact(x0, u, a, eta, t_limit, law, X, P, Q)
+                # right after a detach F = 0 to the polish's rounding (its sign there is noise, which
+                # at_rest_is_sticky could read as F < 0 and restart a zero-length sticky phase, found
+                # by test_sticky_records_follow_the_rules): the mass leaves iff F' > 0 (eq. cond_di_distacco)
+                lifting = False
+                if kind == DETACH:
+                    _, Fp, _, noise_Fp = floor_force(a, eta, law)
+                    lifting = Fp > noise_Fp
+                status, tau, v, scale, eta_t, xid_t, acc, jerk = first_contact(x0, u, a, eta, t_limit, law, X, P, Q,
+                                                                               lifting)
                 if status == SLOW_CROSSING:
                     stop = STOP_SLOW_CROSSING
                     break

@@ -311,6 +311,9 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
                         if abs(F) <= noise_F or not Fp > 0.0:
                             break
                         s -= F / Fp
+                    else:  # the state recorded is the one at the time recorded
+                        D, Dp = displacement(s, radius, K, X)
+                        v_s, eta_s = (v + Dp) + vl, eta + ((v * s + D) + (el + vl * s))
                     t_hi, t_lo = compensated_add(t_hi, t_lo, s)
                     return FOUND, t_hi + t_lo, v_s, eta_s
             if s < h:
