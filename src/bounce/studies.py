@@ -4,6 +4,12 @@ A study is ``build(spec) -> xr.Dataset`` plus ``plot(ds, spec, outputs)`` in one
 ``bounce.methods``, the slice of the validated config it takes and the scene datasets it reads (declared
 inputs of its rule, their paths in the slice).  The Snakefile (``workflow/rules/common.smk``,
 ``methods.smk``) and the rule entry point (:mod:`bounce.tasks`) both read this table.
+
+What a study simulates itself and what it reads: a study runs the methods it compares, the exact
+solver included where that run is one of the compared columns (its CPU time in work-precision,
+stability-map and contact-switch; the dimer's own r_n and energy curve next to the rigid models in
+reduced-vs-dimer); a trajectory it only reads as a reference is a scene, produced by the scene rule
+and declared in ``Study.scenes`` (least-model).
 """
 
 from __future__ import annotations
