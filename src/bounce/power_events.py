@@ -172,7 +172,7 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     cannot skip an impact (:mod:`bounce.power_flight`).
     """
     from .model import Deviations, InputError, State
-    from .simulate import Trajectory, stop_rules
+    from .simulate import run_into_trajectory, stop_rules
 
     max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
     if params.spring != spring and params.spring.name != "linear":
@@ -187,21 +187,10 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
         x, u, a, eta = initial.x, initial.xdot, initial.xidot, initial.eta
     else:
         raise InputError(f"initial must be a State or Deviations, got {type(initial).__name__}")
-    out = [np.empty(max_events) for _ in range(6)]
-    kind = np.empty(max_events, dtype=np.int8)
-    n, stop, t_end = run_power_events(x, u, a, eta, law, max_events, t_max, energy_stop, *out, kind)
-    if stop == STOP_FAILED:
-        raise RuntimeError(
-            f"power-law root finder did not converge after event {n} (t = {t_end!r}); "
-            "please report the parameters and initial state"
-        )
-    t, tau, uu, aa, ee, e = (arr if n == max_events else arr[:n].copy() for arr in out)
-    return Trajectory(
-        params=params, initial=initial, t=t, tau=tau, xdot=uu, xidot=aa, eta=ee, energy_excess=e,
-        kind=kind if n == max_events else kind[:n].copy(), stop_reason=POWER_STOP_NAMES[stop], t_end=t_end,
-        settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop,
-                  **spring.attrs()},
-    )
+    return run_into_trajectory(
+        lambda *buffers: run_power_events(x, u, a, eta, law, max_events, t_max, energy_stop, *buffers),
+        params, initial, (max_events, t_max, energy_stop), POWER_STOP_NAMES, "power-law root finder",
+        spring.attrs())
 
 
 __all__ = ["KIND_NAMES", "POWER_STOP_NAMES", "energy_excess", "run_power_events", "simulate_power"]

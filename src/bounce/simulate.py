@@ -108,6 +108,30 @@ def stop_rules(max_events, t_max, energy_stop) -> tuple[int, float, float]:
     return max_events, t_max, energy_stop
 
 
+def run_into_trajectory(run, params, initial, stop: tuple[int, float, float], stop_names, solver: str,
+                        settings: dict | None = None) -> Trajectory:
+    """The event loop ``run(*buffers, kind) -> (n, stop, t_end)`` of either spring law's front, run into
+    freshly allocated record buffers and wrapped as a :class:`Trajectory` (views when the buffers are
+    full, so no 50 MB copy at 1e6 events; compact copies otherwise).  A failed root search raises, naming
+    the ``solver``."""
+    max_events, t_max, energy_stop = stop
+    out = [np.empty(max_events) for _ in range(6)]
+    kind = np.empty(max_events, dtype=np.int8)
+    n, reason, t_end = run(*out, kind)
+    if reason == STOP_FAILED:
+        raise RuntimeError(
+            f"{solver} did not converge after event {n} (t = {t_end!r}); "
+            "please report the parameters and initial state"
+        )
+    t, tau, u, a, eta, e = (arr if n == max_events else arr[:n].copy() for arr in out)
+    return Trajectory(
+        params=params, initial=initial, t=t, tau=tau, xdot=u, xidot=a, eta=eta,
+        energy_excess=e, kind=kind if n == max_events else kind[:n].copy(), stop_reason=stop_names[reason],
+        t_end=t_end,
+        settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop, **(settings or {})},
+    )
+
+
 def simulate(
     params: Parameters,
     initial: State | Deviations,
@@ -136,21 +160,7 @@ def simulate(
     check_supported(params, start)
     params_arr, coefs = make_oscillator(params.mu)
     sparams, scoefs = make_oscillator(params.mu / SQRT2)
-    out = [np.empty(max_events) for _ in range(6)]
-    kind = np.empty(max_events, dtype=np.int8)
-    n, stop, t_end = run_events(
-        start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs, sparams, scoefs,
-        max_events, t_max, energy_stop, *out, kind,
-    )
-    if stop == STOP_FAILED:
-        raise RuntimeError(
-            f"root finder did not converge after event {n} (t = {t_end!r}); "
-            "please report the parameters and initial state"
-        )
-    # views when the buffers are full (no 50 MB copy at 1e6 events), compact copies otherwise
-    t, tau, u, a, eta, e = (arr if n == max_events else arr[:n].copy() for arr in out)
-    return Trajectory(
-        params=params, initial=initial, t=t, tau=tau, xdot=u, xidot=a, eta=eta,
-        energy_excess=e, kind=kind if n == max_events else kind[:n].copy(), stop_reason=STOP_NAMES[stop], t_end=t_end,
-        settings={"max_events": max_events, "t_max": t_max, "energy_stop": energy_stop},
-    )
+    return run_into_trajectory(
+        lambda *buffers: run_events(start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs,
+                                    sparams, scoefs, max_events, t_max, energy_stop, *buffers),
+        params, initial, (max_events, t_max, energy_stop), STOP_NAMES, "root finder")
