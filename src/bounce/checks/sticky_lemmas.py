@@ -485,7 +485,7 @@ def _dataset(m: Measurements) -> xr.Dataset:
             "construct_excess": variable(("cpair", "factor", "contact"), c.excess,
                                          "(E - E_min)/gamma^2 at the constructed anomalous event"),
             "construct_kind": variable(("cpair", "factor", "contact"), c.kind, "kind of the constructed event",
-                                       flag_values=[0, 1, 2, 3], flag_meanings="impact grazing sticky_start detach"),
+                                       flag_values=list(range(len(KIND_NAMES))), flag_meanings="impact grazing sticky_start detach"),
             "expansion_zeta": variable("zeta", x.zeta, "time since the onset zeta"),
             "expansion_residual": variable("zeta", x.R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
             "family_eps": variable("family", np.array(f.eps), "eps of eq. sticky-ic"),
