@@ -38,7 +38,7 @@ import xarray as xr
 from mpmath import mp
 
 from ..anomalies import construct_contact, minimum_sticky_energy
-from ..events import DETACH, GRAZING, STICKY_START, XN_ULPS, contact_window, energy_excess
+from ..events import DETACH, GRAZING, KIND_NAMES, STICKY_START, XN_ULPS, contact_window, energy_excess
 from ..flight import EPS
 from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
@@ -485,7 +485,8 @@ def _dataset(m: Measurements) -> xr.Dataset:
             "construct_excess": variable(("cpair", "factor", "contact"), c.excess,
                                          "(E - E_min)/gamma^2 at the constructed anomalous event"),
             "construct_kind": variable(("cpair", "factor", "contact"), c.kind, "kind of the constructed event",
-                                       flag_values=list(range(len(KIND_NAMES))), flag_meanings="impact grazing sticky_start detach"),
+                                       flag_values=list(range(len(KIND_NAMES))),
+                                       flag_meanings=" ".join(KIND_NAMES)),
             "expansion_zeta": variable("zeta", x.zeta, "time since the onset zeta"),
             "expansion_residual": variable("zeta", x.R, "R = -4F/zeta - [2 alpha + (2 gamma - mu alpha) zeta]"),
             "family_eps": variable("family", np.array(f.eps), "eps of eq. sticky-ic"),
