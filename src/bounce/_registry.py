@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import pkgutil
+import sys
 
 
 def discover(package: str, path, attribute: str, kind: type) -> dict:
@@ -19,3 +21,19 @@ def discover(package: str, path, attribute: str, kind: type) -> dict:
             if isinstance(obj, kind):
                 found[obj.name] = obj
     return found
+
+
+def lazy_import(name: str):
+    """The module ``name``, executed at its first attribute access (importlib.util.LazyLoader).
+
+    Discovery imports every plugin module; a plugin whose heavy dependency only its own measurement
+    needs (sympy, ~1 s) imports it this way, so parsing the workflow and every other job do not pay it."""
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.find_spec(name)
+    loader = importlib.util.LazyLoader(spec.loader)
+    spec.loader = loader
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    loader.exec_module(module)
+    return module
