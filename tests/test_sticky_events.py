@@ -30,7 +30,7 @@ def test_least_dissipation_matches_the_simulator():
     """D (closed form, Simpson) equals the energy the simulator loses in the sticky phase from the minimising onset;
     a D too large by 1 % would exceed it (the per-event check of sticky-count-bound would fail)."""
     g, mu = 0.01, 0.1
-    D, alpha, _, _ = se.least_dissipation(g, mu, 24.0 * g * g, 12, 2001)
+    D, alpha, _, _ = theory.least_sticky_dissipation(g, mu, 24.0 * g * g, 12, 2001)
     p = Parameters(g, mu)
     tr = simulate(p, State.sticky_ic(p, eps=0.0, ydot0=4 * g * mu - alpha), max_events=3)
     s, d = list(tr.kind).index(STICKY_START), list(tr.kind).index(DETACH)
@@ -41,6 +41,6 @@ def test_least_dissipation_matches_the_simulator():
 
 def test_bound_grows_like_one_over_mu():
     g = 0.01
-    d = [se.least_dissipation(g, mu, 24.0 * g * g, 12, 2001)[0] / mu for mu in (1e-3, 1e-2)]
+    d = [theory.least_sticky_dissipation(g, mu, 24.0 * g * g, 12, 2001)[0] / mu for mu in (1e-3, 1e-2)]
     assert 0.5 < d[0] / d[1] < 2.0  # D ~ mu: the count bound ~ 1/mu, infinite at mu = 0 (the conservative cycle)
     assert theory.min_sticky_energy(g, 0.0) > theory.E_min(g)

@@ -176,6 +176,56 @@ def t_c(gamma: float, mu: float, ydot0: float = -0.1) -> float:
     return math.nan
 
 
+def sticky_dissipation(gamma: float, mu: float, ydot_s: float, samples: int) -> tuple[float, float]:
+    """(duration t_d - t_s, energy dissipated (mu/2) int ydot^2) of the sticky phase from the onset with Ydot_s
+    (eq. ``energy-dissipation`` with xi' = ydot/2 in contact; proof of Theorem ``Finite-number-sticky-ev``).
+
+    w = y - y_eq obeys w'' + mu w' + w/2 = 0 (eq. ``y-eq-sticky``) from w = 4 gamma - 2 mu Ydot_s, w' = Ydot_s:
+    ydot = w' = -w0 S/2 + w0' (C - mu S) (C' = -S/2, S' = C - mu S), the phase ends at :func:`t_c`.  Simpson on
+    ``samples`` points (error O(samples^-4), below 1e-10 relative at 2001).  (nan, nan) if the phase never ends.
+    """
+    from scipy.integrate import simpson
+
+    t_d = t_c(gamma, mu, ydot_s)
+    if not math.isfinite(t_d):
+        return math.nan, math.nan
+    t = np.linspace(0.0, t_d, samples)
+    C, S = sticky_fundamental(mu, t)
+    w0, w0d = 4 * gamma - 2 * mu * ydot_s, ydot_s
+    ydot = -w0 * S / 2 + w0d * (C - mu * S)
+    return t_d, 0.5 * mu * simpson(ydot**2, x=t)
+
+
+def least_sticky_dissipation(gamma: float, mu: float, excess_1: float, n_alpha: int, samples: int):
+    """D of the proof of Theorem ``Finite-number-sticky-ev``: the least energy a finite sticky phase dissipates
+    among onsets with E - E_m <= excess_1, from a grid of alpha_s = 4 gamma mu - Ydot_s in (eps*, alpha_max]
+    (geometric near :func:`eps_star`, where the phases lengthen).  A grid minimum is at least the infimum, so a
+    bound built on it is never looser than the proof's.
+
+    On the sticky line E - E_m = Ydot^2/4 + (4 gamma - 2 mu Ydot)^2/8 (eq. ``sticky-energy``): a parabola in Ydot,
+    so the admissible Ydot form an interval.  Returns (D, alpha at D, alpha grid, dissipation on it); nan and
+    empty grids when no onset is admissible.
+    """
+    a2, a1, a0 = 0.25 + 0.5 * mu * mu, -2 * gamma * mu, 2 * gamma * gamma - excess_1
+    disc = a1 * a1 - 4 * a2 * a0
+    if disc <= 0:
+        return math.nan, math.nan, np.array([]), np.array([])
+    y_lo = (-a1 - math.sqrt(disc)) / (2 * a2)
+    y_hi = (-a1 + math.sqrt(disc)) / (2 * a2)
+    lo = max(eps_star(gamma, mu)[0], 4 * gamma * mu - y_hi, 0.0)
+    hi = 4 * gamma * mu - y_lo
+    alphas = lo + (hi - lo) * np.geomspace(1e-6, 1.0, n_alpha)
+    diss = np.array([sticky_dissipation(gamma, mu, 4 * gamma * mu - al, samples)[1] for al in alphas])
+    k = int(np.nanargmin(diss))
+    return float(diss[k]), float(alphas[k]), alphas, diss
+
+
+def sticky_count_bound(gamma: float, mu: float, excess_1: float, D: float) -> float:
+    """N <= 1 + (E(s_1) - E_min)/D: the proof of Theorem ``Finite-number-sticky-ev`` (no sticky onset below
+    E_min, Lemma ``Min-sticky-energy``; each finite sticky event dissipates >= D); ``excess_1`` = E(s_1) - E_m."""
+    return 1.0 + (excess_1 - (min_sticky_energy(gamma, mu) - E_min(gamma))) / D
+
+
 def t_c_gamma_band(mu: float, lo: float, hi: float, g_range, ydot0: float = -0.1) -> tuple[float, float]:
     """gamma interval with lo <= t_c(gamma, mu) < hi (t_c increases with gamma), by brentq on :func:`t_c`;
     nan at an end whose level is outside t_c(g_range)."""

@@ -8,9 +8,10 @@ Min-sticky-energy), so a run whose first sticky onset has energy E(s_1) has at m
 
 D the least energy (mu/2) int_{t_s}^{t_d} ydot^2 (eq. energy-dissipation with xi' = ydot/2 in contact)
 that a finite sticky phase with onset energy in [E_min, E(s_1)] dissipates.  D is computed from the
-sticky phase's closed form (eq. y-eq-sticky, :func:`bounce.theory.sticky_fundamental`, the detach time
-:func:`bounce.theory.t_c`) over a grid of onsets alpha_s in (eps*, alpha_max]: a grid minimum is at least the
-infimum, so the bound computed is never looser than the proof's.
+sticky phase's closed form over a grid of onsets alpha_s in (eps*, alpha_max]
+(:func:`bounce.theory.least_sticky_dissipation`, the bound :func:`bounce.theory.sticky_count_bound`): a grid
+minimum is at least the infimum, so the bound computed is never looser than the proof's.  This group holds the
+theorem's bound; claim group sticky-lemmas counts sticky events in the Monte Carlo and eq. sticky-ic's family.
 
 Runs with several sticky events.  For mu > 0 a second sticky onset after a detach is a codimension-2
 event in the parameters (gamma scales out: three conditions x = x' = x'' = 0 at the landing on the two
@@ -36,7 +37,6 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 from mpmath import findroot, mp, mpf, tan
-from scipy.integrate import simpson
 
 from .. import reference, theory
 from ..events import DETACH, STICKY_ONSET, STICKY_START, contact_window
@@ -51,45 +51,6 @@ def symmetric_flight_root() -> float:
     """u > 0, the first positive root of tan u = u (the flight's half time in units of 1 at mu = 0), to 1e-30."""
     with mp.workdps(40):
         return findroot(lambda u: tan(u) - u, mpf("4.4934"))
-
-
-def sticky_dissipation(gamma: float, mu: float, ydot_s: float, samples: int) -> tuple[float, float]:
-    """(duration t_d - t_s, energy dissipated (mu/2) int ydot^2) of the sticky phase from the onset with Ydot_s.
-
-    w = y - y_eq obeys w'' + mu w' + w/2 = 0 (eq. y-eq-sticky) from w = 4 gamma - 2 mu Ydot_s, w' = Ydot_s:
-    ydot = w' = -w0 S/2 + w0' (C - mu S) (C' = -S/2, S' = C - mu S); Simpson on ``samples`` points (error
-    O(samples^-4), below 1e-10 relative at 2001).  (nan, nan) if the phase never ends.
-    """
-    t_d = theory.t_c(gamma, mu, ydot_s)
-    if not math.isfinite(t_d):
-        return math.nan, math.nan
-    t = np.linspace(0.0, t_d, samples)
-    C, S = theory.sticky_fundamental(mu, t)
-    w0, w0d = 4 * gamma - 2 * mu * ydot_s, ydot_s
-    ydot = -w0 * S / 2 + w0d * (C - mu * S)
-    return t_d, 0.5 * mu * simpson(ydot**2, x=t)
-
-
-def least_dissipation(gamma: float, mu: float, excess_1: float, n_alpha: int, samples: int):
-    """D: the least energy a finite sticky phase dissipates among onsets with E - E_m <= excess_1, from a grid
-    of alpha_s = 4 gamma mu - Ydot_s in (eps*, alpha_max] (geometric near eps*, where the phases lengthen).
-
-    On the sticky line E - E_m = Ydot^2/4 + (4 gamma - 2 mu Ydot)^2/8 (eq. sticky-energy): a parabola in Ydot,
-    so the admissible Ydot form an interval.  Returns (D, alpha at D, alpha grid, dissipation on it).
-    """
-    a2, a1, a0 = 0.25 + 0.5 * mu * mu, -2 * gamma * mu, 2 * gamma * gamma - excess_1
-    disc = a1 * a1 - 4 * a2 * a0
-    if disc <= 0:
-        return math.nan, math.nan, np.array([]), np.array([])
-    y_lo = (-a1 - math.sqrt(disc)) / (2 * a2)
-    y_hi = (-a1 + math.sqrt(disc)) / (2 * a2)
-    eps_s = theory.eps_star(gamma, mu)[0]
-    lo = max(eps_s, 4 * gamma * mu - y_hi, 0.0)
-    hi = 4 * gamma * mu - y_lo
-    alphas = lo + (hi - lo) * np.geomspace(1e-6, 1.0, n_alpha)
-    diss = np.array([sticky_dissipation(gamma, mu, 4 * gamma * mu - al, samples)[1] for al in alphas])
-    k = int(np.nanargmin(diss))
-    return float(diss[k]), float(alphas[k]), alphas, diss
 
 
 def measure(spec: dict, inputs=()) -> SimpleNamespace:
@@ -113,7 +74,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
     starts0 = np.flatnonzero(tr0.kind == STICKY_START)
     t_c0 = theory.t_c(gamma, 0.0, ydot_s)
     period = t_c0 + 2 * float(u)
-    returns = np.diff(tr0.t[starts0]) - period if starts0.size > 1 else np.array([math.nan])
+    returns = np.diff(tr0.t[starts0]) - period  # empty with fewer than two sticky events
+    off_period = f"{np.max(np.abs(returns)):.2g}" if returns.size else "- (no return)"
     e_drift = float(np.max(np.abs(tr0.energy_excess - tr0.energy_excess[0])) / tr0.energy_excess[0])
     # the classifier's windows at the landing (bounce.events): its time is hidden within delta3, and the onset is
     # put on the sticky line, moving x'' by up to (STICKY_ONSET x'''^2 xn)^(1/3), i.e. z by twice that and E by z/4 times it
@@ -134,7 +96,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         measured=f"landing |x|, |x'|, |x''| = {exact[0]:.1g}, {exact[1]:.1g}, {exact[2]:.1g} gamma, least interior "
                  f"x = {exact[3]:.4g} gamma, xi' + u gamma = {exact[4]:.1g}; simulator: {starts0.size} sticky events "
                  f"in {len(tr0)} events ({', '.join(tr0.kind_names[:6])}, ...), returns off the period by "
-                 f"{np.nanmax(np.abs(returns)):.2g}, energy drift {e_drift:.2g} (relative); the orbit is unstable, "
+                 f"{off_period}, energy drift {e_drift:.2g} (relative); the orbit is unstable, "
                  "so rounding ends the cycle after the events shown",
         tolerance=f"1e-30 gamma (mpmath at 40 digits); returns within 2 delta3 = {2 * delta3:.2g} and energy within "
                   f"{e_window:.2g} relative: the classifier's time and x'' windows at a sticky landing (bounce.events)",
@@ -150,8 +112,9 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         detaches = np.flatnonzero(tr.kind == DETACH)
         excess_1 = float(tr.energy_excess[starts[0]])
         emin_excess = theory.min_sticky_energy(gamma, mu) - theory.E_min(gamma)
-        D, alpha_D, alphas, diss = least_dissipation(gamma, mu, excess_1, int(spec["n_alpha"]), int(spec["samples"]))
-        bound = 1 + (excess_1 - emin_excess) / D
+        D, alpha_D, alphas, _ = theory.least_sticky_dissipation(gamma, mu, excess_1, int(spec["n_alpha"]),
+                                                                int(spec["samples"]))
+        bound = theory.sticky_count_bound(gamma, mu, excess_1, D)
         drops = [float(tr.energy_excess[s] - tr.energy_excess[d]) for s in starts for d in detaches[detaches > s][:1]]
         onset_ok = bool(np.all(tr.energy_excess[starts] >= emin_excess * (1 - 1e-12)))
         ok = starts.size <= bound and all(dr >= D * (1 - 1e-6) for dr in drops) and onset_ok
