@@ -23,6 +23,20 @@ def test_readme_opens_with_the_two_commands():
     assert "python -m pytest" in (ROOT / ".ci" / "run").read_text()
 
 
+def test_readme_lists_every_claim_group_in_config_order():
+    """The README's table of claim groups names every registered group once, in config ``checks:`` order."""
+    import yaml
+
+    from bounce.checks import registry
+
+    text = (ROOT / "README.md").read_text()
+    rows = [line.split("`")[1] for line in text.splitlines() if line.startswith("| `") and "claim group" not in line]
+    configured = list(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["checks"])
+    listed = [r for r in rows if r in registry()]
+    assert sorted(configured) == sorted(registry())
+    assert listed == configured
+
+
 def test_update_replaces_only_the_block(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text(f"intro\n{BEGIN}\nold 1.0 s\n{END}\noutro\n")
