@@ -253,6 +253,17 @@ def test_horizon_chaotic_transient():
     assert hld > h64, (hld, h64)
 
 
+def test_yardstick_reach_stops_where_the_self_check_decorrelates():
+    """Comparisons stop at the first impact where the dps_low self-check is off the yardstick by more than 1e-2
+    (the yardstick's own error is unbounded beyond); a self-check that never departs keeps every impact."""
+    t_ref = np.arange(1.0, 101.0)
+    growth = 1e-30 * np.exp(np.arange(100.0))  # an error growing by e per impact, from 1e-30
+    k = horizon.yardstick_reach(t_ref * (1 + growth), t_ref, 100)
+    assert growth[k - 1] > 1e-2 >= growth[k - 2]
+    assert horizon.yardstick_reach(t_ref, t_ref, 100) == 100
+    assert horizon.yardstick_reach(t_ref * (1 + growth), t_ref, 20) == 20
+
+
 def test_least_model_reference_reads_a_thinned_scene():
     """least_model's reference is the scene's dataset.  A scene thinned to its first events plus log-spaced ones
     (keep) gives the asymptotic laws n tau_n mu/3, n Xdot_n mu/(3 gamma) at its kept impacts bit for bit as the

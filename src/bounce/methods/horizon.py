@@ -288,6 +288,22 @@ def horizon_index(err, tol: float) -> int:
     return int(bad[0]) if bad.size else len(err)
 
 
+#: relative error of the dps_low self-check beyond which the yardstick itself is no longer trusted
+YARDSTICK_DECORRELATED = 1e-2
+
+
+def yardstick_reach(t_low, t_ref, n: int) -> int:
+    """Impacts over which the ``dps``-digit yardstick is exact for this study: up to and including the first
+    impact where the ``dps_low`` run departs from it by more than :data:`YARDSTICK_DECORRELATED` (at most ``n``).
+
+    Errors scale with the working precision (the consistency check of the module docstring), so the yardstick's
+    own error is ~10^-(dps - dps_low) times the self-check's: <= 1e-12 relative there for dps - dps_low = 10,
+    four decades below any ``tol`` of this study.  Beyond it the yardstick's error grows as e^(lambda n) with
+    nothing to bound it, so nothing is compared there (the chaotic drop: 30 digits depart by 1e-2 at impact 96)."""
+    err = rel_diff(t_low[:n], t_ref[:n])
+    return min(n, horizon_index(err, YARDSTICK_DECORRELATED) + 1)
+
+
 def growth_rate(x, err, band) -> tuple[float, float, int]:
     """Slope of ln(err) against x over the first stretch with err in ``band`` (after the last time the error
     was below band[0]); returns (slope, its standard error, number of points)."""
@@ -375,7 +391,7 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
             "longdouble": longdouble_trajectory(g, m, start, n),
             "mp_low": reference_trajectory(g, m, start, n, dps_low),
         }
-        k = min(ref["n"], *(run["n"] for run in runs.values()))
+        k = yardstick_reach(runs["mp_low"]["t"], ref["t"], min(ref["n"], *(run["n"] for run in runs.values())))
         n_compared[i] = k
         t_ref[i, :k] = [float(v) for v in ref["t"][:k]]
         for j, p in enumerate(PRECISIONS):
@@ -439,7 +455,8 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
             "lambda_t_shift": (("regime", "precision"), lam_shift_t,
                                {"long_name": "ln(eps_64/eps_p)/(t_{H_p} - t_{H_64}): e-folds of precision per unit "
                                              "time of horizon gained", "units": "1/sqrt(m/2k)"}),
-            "n_compared": (reg, n_compared, {"long_name": "impacts compared", **attrs_u}),
+            "n_compared": (reg, n_compared, {"long_name": "impacts compared (at most n_mp; the yardstick's reach, "
+                                                          "yardstick_reach)", **attrs_u}),
             "cpu_reference": (reg, cpu_ref, {"long_name": "CPU time of the mp reference run", "units": "s"}),
             "stat_nXdot": (("regime", "stat_precision", "checkpoint"), stat_c,
                            {"long_name": "n Xdot_n mu/(3 gamma) at n (Theorem main_thm: -> 1)", **attrs_u}),
