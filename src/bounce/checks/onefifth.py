@@ -228,7 +228,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     from ..figures.common import WIDTH, plt, save
 
     at = ds.attrs
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.1), constrained_layout=True)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.8), constrained_layout=True)
     u_line = np.geomspace(float(np.nanmin(ds["arrival"].values)), float(np.nanmax(ds["arrival"].values)), 200)
     law = at["c2"] * u_line ** (2 * FIFTH) + (u_line / at["U"]) ** FIFTH
     for j, g in enumerate(ds["gamma"].values):
@@ -247,7 +247,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a1.semilogx(u_line, 1 - law, "k-", lw=0.8, label=fit_lab)
     a2.loglog(u_line, law, "k-", lw=0.8, label=fit_lab)
     r_lin = at["linear_r"]
-    a1.axhline(r_lin, color="C3", ls="--", lw=0.8, label=rf"linear: $e^{{-\mu T_\xi}}={r_lin:.4f}$")
+    a1.axhline(r_lin, color="C3", ls="--", lw=0.8, label=rf"linear spring: $r = e^{{-\mu T_\xi}}={r_lin:.4f}$")
     a2.axhline(1 - r_lin, color="C3", ls="--", lw=0.8)
     for ax in (a1, a2):
         ax.axvspan(at["fit_u_lo"], at["fit_u_hi"], color="0.9", zorder=-1)
@@ -258,7 +258,9 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a2.set_ylim(1e-7, 3.0)
     a1.set_title(r"(a) $r(u)$; shaded: fit window ($\gamma$ smallest); $r<0$: gravity wins", fontsize=8)
     a2.set_title(r"(b) $1-r$: slope $1/5$ (single) against 1 (repeated)", fontsize=8)
-    a2.legend(fontsize=5, loc="lower right")
+    handles, labels = a2.get_legend_handles_labels()
+    extra = [(h, lb) for h, lb in zip(*a1.get_legend_handles_labels()) if lb not in labels]
+    fig.legend(handles + [h for h, _ in extra], labels + [lb for _, lb in extra], fontsize=6, ncol=2, loc="outside lower center")
     fig.suptitle(rf"eq. onefifth-rest-coeff: Hertz spring $a=b=1/2$, $\rho={at['spring_rho']:g}$, $\mu={at['mu']:g}$",
                  fontsize=9)
     save(fig, outputs)
