@@ -44,7 +44,7 @@ from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
-                      sticky_onset)
+                      sticky_onset, ydot_min_Esticky)
 from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, split_inputs, variable
 
 NAME = "sticky-lemmas"
@@ -113,10 +113,9 @@ class Measurements:
         rows = np.array([minimum_sticky_energy(g, m, int(self.spec["grid"])) for g, m in self.pairs])
         e_num, yd_num, z_num, acc_num, e_grid = rows.T
         gam, mus = self.gam, self.mus
-        e_formula = (3 - 2 * mus**2) * gam**2 / (2 * (1 + 2 * mus**2))  # eq. min-sticky-energy (absolute E)
+        e_formula = np.array([min_sticky_energy(g, m) for g, m in self.pairs])  # eq. min-sticky-energy (absolute E)
         e_num_abs = e_num - gam**2 / 2
-        yd_formula = 4 * gam * mus / (1 + 2 * mus**2)
-        z_formula = 4 * gam / (1 + 2 * mus**2)
+        yd_formula, z_formula = np.array([ydot_min_Esticky(g, m) for g, m in self.pairs]).T  # eq. ydot-min-Esticky
         return SimpleNamespace(
             e_num_abs=e_num_abs, e_formula=e_formula, e_grid_abs=e_grid - gam**2 / 2, yd_num=yd_num, z_num=z_num,
             acc_num=acc_num, yd_formula=yd_formula,
@@ -133,7 +132,7 @@ class Measurements:
         drift = np.full((len(c_pairs), factors.size), np.nan)
         graze_margin = np.full((len(c_pairs), factors.size), np.nan)
         for k, (g, m) in enumerate(c_pairs):
-            alpha_star = 8 * g * m**3 / (1 + 2 * m * m)  # 4 gamma mu - Ydot_min (eq. ydot-min-Esticky)
+            alpha_star = 8 * g * m**3 / (1 + 2 * m * m)  # 4 gamma mu - Ydot_min (eq. ydot-min-Esticky) without cancellation
             emin_excess = min_sticky_energy(g, m) - E_min(g)
             for j, f in enumerate(factors):
                 alpha = f * alpha_star
@@ -566,7 +565,7 @@ def min_energy_above_equilibrium(m, spec) -> Verdict:
     g = float(spec["emin_gamma"])
     mus = np.array(spec["emin_mu"], dtype=float)
     excess = np.array([minimum_sticky_energy(g, mu, int(spec["grid"]))[0] for mu in mus])  # E_min - E_m, numerical
-    ratio = excess * (1 + 2 * mus**2) / (2 * g * g)  # 1 if E_min - E_m = 2 gamma^2/(1 + 2 mu^2)
+    ratio = excess / np.array([min_sticky_energy(g, mu) - E_min(g) for mu in mus])  # 1 if eq. min-sticky-energy holds
     tol = 1e-8
     ok = bool(np.all(excess > 0) and np.all(np.diff(excess) < 0) and np.all(np.abs(ratio - 1) <= tol))
     return Verdict(
