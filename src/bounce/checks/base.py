@@ -156,6 +156,18 @@ def split_inputs(inputs) -> tuple[list, dict]:
     return scenes, named
 
 
+class Measurements:
+    """Base of a claim group's ``measure`` (point 1 of the contract) for groups whose claims read different parts:
+    ``Measurements(spec, inputs)`` keeps the config slice ``spec`` and the inputs split by :func:`split_inputs`
+    (``scenes``, ``named``); a subclass adds each measurement as a :func:`functools.cached_property` (one claim
+    runs only what it reads) and ``data``, the dataset of the figure.  The subclass itself is the ``measure``
+    passed to :class:`Check`."""
+
+    def __init__(self, spec: dict, inputs=()):
+        self.spec = spec
+        self.scenes, self.named = split_inputs(inputs)
+
+
 @dataclass(frozen=True)
 class Check:
     """A claim group: its measurements, its claims in order, its figure, the experiments it reads."""

@@ -35,7 +35,8 @@ from ..oscillator import fundamental, make_oscillator
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import contact_derivatives, T_xi, rest_coefficient_function_of_mu, sticky_energy, u_c
-from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Experiment, Verdict, claim, judge, split_inputs, variable
+from . import base
+from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Experiment, Verdict, claim, judge, variable
 
 NAME = "errata"
 ASYMPTOTIC_RUN = "asymptotic-run"  # the experiment of sections 4-6 (rule check_experiment)
@@ -82,14 +83,10 @@ def _median_at(arr, n):
     return float(np.median(arr[int(0.95 * n):int(1.05 * n)]))
 
 
-class Measurements:
+class Measurements(base.Measurements):
     """The group's one measurement, by section of the paper, each computed on first use: the asymptotic run
     (experiment ``asymptotic-run``), short constructed runs (<= 14 events: probes, checks/base.py) and their
     dense output, and plain evaluations."""
-
-    def __init__(self, spec: dict, inputs=()):
-        self.spec = spec
-        _, self.named = split_inputs(inputs)
 
     @cached_property
     def asym(self) -> SimpleNamespace:
@@ -191,10 +188,6 @@ class Measurements:
     @cached_property
     def data(self) -> xr.Dataset:
         return _dataset(self)
-
-
-def measure(spec: dict, inputs=()) -> Measurements:
-    return Measurements(spec, inputs)
 
 
 # --------------------------------------------------------------------------- the claims
@@ -701,5 +694,5 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-CHECK = Check(NAME, measure, tuple(CLAIMS), plot, title="Errata: the paper's formulas checked one by one",
+CHECK = Check(NAME, Measurements, tuple(CLAIMS), plot, title="Errata: the paper's formulas checked one by one",
               experiments=(Experiment(ASYMPTOTIC_RUN, ("asym_params", "asym_events"), asymptotic_run),))

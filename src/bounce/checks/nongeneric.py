@@ -58,7 +58,8 @@ from ..events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
 from ..model import Deviations, Parameters
 from ..simulate import simulate
 from ..theory import E_min, contact_derivatives, min_sticky_energy, sticky_onset
-from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Experiment, Verdict, claim, judge, split_inputs, variable
+from . import base
+from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Experiment, Verdict, claim, judge, variable
 
 NAME = "contact-non-generic"
 MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
@@ -217,13 +218,9 @@ def speed_scan(spec: dict):
 
 # --------------------------------------------------------------------------- run
 
-class Measurements:
+class Measurements(base.Measurements):
     """The Monte Carlo and the runs to rest (read from their files), the probes (run on first use, so one
     claim runs only what it needs)."""
-
-    def __init__(self, spec: dict, inputs=()):
-        self.spec = spec
-        _, self.named = split_inputs(inputs)
 
     @cached_property
     def mc(self) -> dict:
@@ -273,10 +270,6 @@ class Measurements:
     @cached_property
     def data(self) -> xr.Dataset:
         return _dataset(self, self.spec)
-
-
-def measure(spec: dict, inputs=()) -> Measurements:
-    return Measurements(spec, inputs)
 
 
 CLAIMS: list = []
@@ -567,7 +560,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         t = ds[var].values  # ranked, each at the upper edge of its histogram bin
         edge = np.unique(t)
         ax.loglog(edge, np.searchsorted(t, edge, side="right"), "o-", ms=3, lw=0.6, color=c, label=lab)
-    lo, hi = int(ds.attrs["tail_fit_lo"]), int(ds.attrs["tail_fit_hi"])
+    hi = int(ds.attrs["tail_fit_hi"])
     t = ds["tail_ratio"].values
     p, C = ds.attrs["tail_exponent_ratio"], ds.attrs["tail_prefactor_ratio"]  # the fit of the verdicts
     rr = np.geomspace(t[0], t[min(hi, t.size) - 1], 20)
@@ -630,6 +623,6 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-CHECK = Check(NAME, measure, tuple(CLAIMS), plot,
+CHECK = Check(NAME, Measurements, tuple(CLAIMS), plot,
               title="Theorem contact-non-generic: zero-speed contacts are non-generic",
               experiments=(Experiment("swish-runs", SWISH_KEYS, swish_runs),))

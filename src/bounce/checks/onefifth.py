@@ -201,7 +201,7 @@ def gravity_breaks(m, spec) -> Verdict:
 
 @claim(CLAIMS, "repeated-impacts", PAPER, SUBJECT)
 def repeated_impacts(m, spec) -> Verdict:
-    rep, s = m.rep, m.single
+    rep = m.rep
     tol, factor = float(spec["map_slope_tolerance"]), float(spec["law_factor"])
     text = ("the 1/5 law fails for repeated impacts close to equilibrium: there 1 - r_n = alpha Xdot_n (the map "
             "eq. mappa), as for the linear spring")

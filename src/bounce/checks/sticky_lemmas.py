@@ -45,7 +45,8 @@ from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
                       sticky_onset, ydot_min_Esticky)
-from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, split_inputs, variable
+from . import base
+from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, variable
 
 NAME = "sticky-lemmas"
 MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
@@ -94,15 +95,14 @@ def sticky_ic_family(spec: dict) -> xr.Dataset:
 
 # --------------------------------------------------------------------------- the shared measurement
 
-class Measurements:
+class Measurements(base.Measurements):
     """The group's one measurement, section by section, each computed on first use (one claim runs only what it
     reads): (a) the numerical minimum of E over the anomalous states and constructed contacts near it, (b) sticky
     durations over alpha_s and the onset expansion, (c) the threshold eps* and its ends, (d) the sticky-ic family
     (experiment sticky-ic-family) and the Monte Carlo (sweep contact-monte-carlo)."""
 
     def __init__(self, spec: dict, inputs=()):
-        self.spec = spec
-        _, self.named = split_inputs(inputs)
+        super().__init__(spec, inputs)
         self.pairs = [tuple(map(float, p)) for p in spec["params"]]
         self.gam = np.array([p[0] for p in self.pairs])
         self.mus = np.array([p[1] for p in self.pairs])
@@ -112,7 +112,7 @@ class Measurements:
         """(a) numerical minimum of E - E_m over {x = xdot = 0, x'' >= 0} per (gamma, mu) and the formulas."""
         rows = np.array([minimum_sticky_energy(g, m, int(self.spec["grid"])) for g, m in self.pairs])
         e_num, yd_num, z_num, acc_num, e_grid = rows.T
-        gam, mus = self.gam, self.mus
+        gam = self.gam
         e_formula = np.array([min_sticky_energy(g, m) for g, m in self.pairs])  # eq. min-sticky-energy (absolute E)
         e_num_abs = e_num - gam**2 / 2
         yd_formula, z_formula = np.array([ydot_min_Esticky(g, m) for g, m in self.pairs]).T  # eq. ydot-min-Esticky
@@ -239,10 +239,6 @@ class Measurements:
     @cached_property
     def data(self) -> xr.Dataset:
         return _dataset(self)
-
-
-def measure(spec: dict, inputs=()) -> Measurements:
-    return Measurements(spec, inputs)
 
 
 # --------------------------------------------------------------------------- the claims
@@ -583,6 +579,6 @@ def min_energy_above_equilibrium(m, spec) -> Verdict:
         verdict=judge(ok))
 
 
-CHECK = Check(NAME, measure, tuple(CLAIMS), plot,
+CHECK = Check(NAME, Measurements, tuple(CLAIMS), plot,
               title="Sticky events: minimum energy, duration, infinite events, finiteness",
               experiments=(Experiment("sticky-ic-family", FAMILY_KEYS, sticky_ic_family),))
