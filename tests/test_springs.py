@@ -78,6 +78,8 @@ def test_exact_solver_refuses_other_laws():
     (["--spring", "power", "--rho", "-1", "--a", "0.5", "--b", "0.5"], "rho must be > 0"),
     (["--spring", "power", "--rho", "1", "--a", "-0.5", "--b", "0.5"], "a must be >= 0"),
     (["--rho", "2"], "only with --spring power"),
+    (["--spring", "power", "--rho", "1", "--a", "0.5", "--b", "nan"], "--b: must be a finite number (allowed range: [0, inf))"),
+    (["--spring", "power", "--rho", "nan", "--a", "0.5", "--b", "0.5"], "--rho: must be a finite number (allowed range: (0, inf))"),
 ])
 def test_cli_refuses_bad_law_with_one_line_and_no_file(tmp_path, capsys, args, words):
     from bounce.cli import main

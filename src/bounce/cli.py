@@ -153,9 +153,9 @@ def build_parser() -> argparse.ArgumentParser:
                               "xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b; linear: rho = 1, a = b = 0)")
     sp.add_argument("--spring", choices=("linear", "power"), default="linear",
                     help="linear (default, closed-form flights) or power (Taylor-series flights)")
-    sp.add_argument("--rho", type=_ANY, help="stiffness of the power law, > 0 (with --spring power)")
-    sp.add_argument("--a", type=_ANY, help="exponent of the restoring force, >= 0 (Hertz: 0.5)")
-    sp.add_argument("--b", type=_ANY, help="exponent of the damping, >= 0 (Hertz: 0.5)")
+    sp.add_argument("--rho", type=_number("(0, inf)"), help="stiffness of the power law, > 0 (with --spring power)")
+    sp.add_argument("--a", type=_number("[0, inf)"), help="exponent of the restoring force, >= 0 (Hertz: 0.5)")
+    sp.add_argument("--b", type=_number("[0, inf)"), help="exponent of the damping, >= 0 (Hertz: 0.5)")
     xy = p.add_argument_group("initial state, heights and velocities")
     xy.add_argument("--x0", type=_number("[0, inf)"), help="height of the lower mass, >= 0")
     xy.add_argument("--xdot0", type=_ANY, help="velocity of the lower mass (>= 0 if x0 = 0)")
