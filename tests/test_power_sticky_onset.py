@@ -1,0 +1,209 @@
+"""A Hertz sticky onset reached from a flight (eq. sticky-condition: x = x' = x'' = 0, x''' < 0).
+
+Such a landing is not generic (two conditions on the flight), so it is constructed backwards, as
+tests/test_events.py does for the linear law: at the onset the lower mass is on the floor at rest
+(x = x' = 0) with the spring at xi_c < 0 and xi' = v chosen so that the floor force vanishes,
+
+    F = f(xi_c) + 2 mu v |xi_c|^b - gamma = 0,   i.e.  v = (gamma + rho |xi_c|^(a+1)) / (2 mu |xi_c|^b),
+
+and F' = x''' < 0 (bounce.power_flight.floor_force: F' = f'(xi) v + 2 mu b |xi|^(b-1) sign(xi) v^2
+- 2 mu gamma |xi|^b at F = 0).  For Hertz (rho = 1, a = b = 1/2) and xi_c < 0 this needs the
+damping to lift the lower mass (v > 0), and the sticky phase that follows crosses the rest length
+xi = 0 before it detaches (a scan of gamma, mu, xi_c found no onset whose sticky phase detaches with
+xi < 0 throughout).  The flight before the onset is integrated backwards for a time T with
+mpmath.odefun (time reversed: z(s) = xi(T - s) solves z'' = -f(z) + 2 mu z' |z|^b; xi < 0 on it, where
+the field is analytic), psi is the exact parabola, and the start (x, x', xi', xi) is rounded to
+float64.
+
+Independent references, written here from the Discussion's equations and sharing no code with
+bounce: the flight (mpmath.odefun, both sides of the onset), and the sticky phase
+xi'' = -(gamma + f(xi) + 2 mu xi' |xi|^b)/2 (bounce.power_sticky, eq. (ST)) through xi = 0 to its
+detach (F = 0, F' > 0, eq. cond_di_distacco), integrated in s = sqrt(|xi|) as the independent
+variable: while xi' > 0, d xi' / ds = 2 s xi'' / xi' and dt/ds = 2 s / xi' with |xi|^(1/2) = s, a
+field analytic in s on each side of xi = 0 (mpmath.odefun again; the crossing is the end point of
+one integration and the start of the next).  Each reference is checked at two precisions.
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+import pytest
+from mpmath import mp, mpf
+
+from bounce import Deviations, Parameters
+from bounce.events import contact_window, rounding_level
+from bounce.power_events import simulate_power
+from bounce.power_flight import floor_force
+from bounce.power_series import L_XI_EQ, law_array
+from bounce.springs.power import PowerSpring
+
+HERTZ = PowerSpring(1.0, 0.5, 0.5)
+EPS = np.finfo(float).eps
+DPS = 30
+#: (gamma, mu, xi_c, T): the onset's spring compression and the flight time before it
+ONSETS = {"g0.1_mu1": (0.1, 1.0, -0.05, 0.3), "g0.01_mu0.2": (0.01, 0.2, -0.01, 0.3)}
+
+
+def onset_state(gamma, mu, xi_c):
+    """(xi', F') at the onset x = x' = 0, xi = xi_c < 0 with F = 0 (Hertz, rho = 1)."""
+    g, m, w = mpf(gamma), mpf(mu), -mpf(xi_c)
+    v = (g + w ** mpf(1.5)) / (2 * m * mp.sqrt(w))
+    Fp = mpf(1.5) * mp.sqrt(w) * v - m * v * v / mp.sqrt(w) - 2 * m * g * mp.sqrt(w)
+    return v, Fp
+
+
+class Flight:
+    """The Hertz flight through the onset (x = 0, psi' = xi' = v at t = T): (x, x', xi, xi') at t."""
+
+    def __init__(self, gamma, mu, xi_c, T):
+        self.g, self.mu, self.xi_c, self.T = mpf(gamma), mpf(mu), mpf(xi_c), mpf(T)
+        self.v, self.Fp = onset_state(gamma, mu, xi_c)
+        m = self.mu
+        # backwards, z(s) = xi(T - s): z'' = -f(z) + 2 mu z' |z|^(1/2); forwards the flight's own equation
+        self.back = mpmath.odefun(lambda s, y: [y[1], -y[0] * mp.sqrt(abs(y[0])) + 2 * m * y[1] * mp.sqrt(abs(y[0]))],
+                                  0, [self.xi_c, -self.v])
+        self.fwd = mpmath.odefun(lambda s, y: [y[1], -y[0] * mp.sqrt(abs(y[0])) - 2 * m * y[1] * mp.sqrt(abs(y[0]))],
+                                 0, [self.xi_c, self.v])
+
+    def state(self, t):
+        tau = mpf(t) - self.T
+        if tau < 0:
+            xi, z1 = self.back(-tau)
+            xid = -z1
+        else:
+            xi, xid = self.fwd(tau)
+        # psi = x + xi is the parabola through the onset: psi(T) = xi_c, psi'(T) = v; x as a displacement
+        x = (self.xi_c - xi) + self.v * tau - self.g * tau * tau / 2
+        return x, self.v - self.g * tau - xid, xi, xid
+
+    def start(self, xi_eq):
+        """The state at t = 0 rounded to float64, eta = xi - xi_eq of the solver's float xi_eq."""
+        x, xd, xi, xid = self.state(0)
+        return Deviations(float(x), float(xd), float(xid), float(xi - mpf(xi_eq)))
+
+
+def sticky_reference(gamma, mu, xi0, v0):
+    """Hertz sticky phase from (xi0 < 0, xi' = v0 > 0) through xi = 0 to its detach (module docstring):
+    (t_detach, xi, xi', F at the start's side maximum) as mpf; xi' must stay > 0 (asserted)."""
+    g, m, xi0, v0 = (mpf(q) for q in (gamma, mu, xi0, v0))
+    s0 = mp.sqrt(-xi0)
+
+    def inward(r, y):  # xi = -(s0 - r)^2: f = -s^3, |xi|^(1/2) = s, dxi/dr = 2 s
+        s = s0 - r
+        acc = -(g - s**3 + 2 * m * y[0] * s) / 2
+        return [2 * s * acc / y[0], 2 * s / y[0]]
+
+    def outward(s, y):  # xi = s^2
+        acc = -(g + s**3 + 2 * m * y[0] * s) / 2
+        return [2 * s * acc / y[0], 2 * s / y[0]]
+
+    sol_in = mpmath.odefun(inward, 0, [v0, mpf(0)])
+    # no detach before xi = 0: F = -s^3 + 2 mu xi' s - gamma < 0 after the start (sampled)
+    F_in = max(-(s0 - r) ** 3 + 2 * m * sol_in(r)[0] * (s0 - r) - g for r in np.linspace(0.05, 1, 20) * s0)
+    v_c, t_c = sol_in(s0)
+    sol_out = mpmath.odefun(outward, 0, [v_c, t_c])
+
+    def F(s):
+        return s**3 + 2 * m * sol_out(s)[0] * s - g
+
+    s, h = mpf(0), s0 / 64  # F(0) = -gamma; the first sign change - to + on a grid of s0/64
+    while F(s + h) < 0:
+        s += h
+    s_d = mp.findroot(F, (s, s + h), solver="anderson")
+    v_d, t_d = sol_out(s_d)
+    assert v_c > 0 and v_d > 0, "the reference needs xi' > 0 from the start to the detach"
+    return t_d, s_d * s_d, v_d, F_in
+
+
+@pytest.fixture(scope="module", params=list(ONSETS))
+def onset(request):
+    gamma, mu, xi_c, T = ONSETS[request.param]
+    law = law_array(1.0, 0.5, 0.5, mu, gamma)
+    xi_eq = float(law[L_XI_EQ])
+    with mp.workdps(DPS):
+        flight = Flight(gamma, mu, xi_c, T)
+        d = flight.start(xi_eq)
+    return gamma, mu, T, law, xi_eq, flight, d
+
+
+def test_onset_construction(onset):
+    """The constructed landing: F = 0 and F' < 0 at the onset (bounce's floor_force agrees to
+    rounding) and x > 0 on [0, T) (sampled): the flight's first contact is the onset."""
+    gamma, mu, T, law, xi_eq, flight, d = onset
+    with mp.workdps(DPS):
+        assert flight.Fp < 0 and d.x > 0
+        assert all(flight.state(T * k / 64)[0] > 0 for k in range(64))
+        F, Fp, noise_F, noise_Fp = floor_force(float(flight.v), float(flight.xi_c - mpf(xi_eq)), law)
+        assert abs(F) <= noise_F and abs(Fp - float(flight.Fp)) <= noise_Fp + 1e-15 * abs(Fp)
+
+
+def test_references_two_precisions_agree():
+    """The references' own truncation and rounding: the flight's start and the sticky phase's
+    detach at DPS and DPS + 10 digits agree to 10^(5 - DPS) relative."""
+    gamma, mu, xi_c, T = ONSETS["g0.1_mu1"]
+    runs = []
+    for dps in (DPS, DPS + 10):
+        with mp.workdps(dps):
+            flight = Flight(gamma, mu, xi_c, T)
+            runs.append((flight.state(0), sticky_reference(gamma, mu, flight.xi_c, flight.v)))
+    with mp.workdps(DPS + 10):
+        (start_lo, sticky_lo), (start_hi, sticky_hi) = runs
+        tol = mpf(10) ** (5 - DPS)
+        assert all(abs(a - b) <= tol * abs(b) for a, b in zip(start_lo, start_hi))
+        assert all(abs(a - b) <= tol * abs(b) for a, b in zip(sticky_lo[:3], sticky_hi[:3]))
+
+
+def contact_scale(d, gamma, T, xi_T, xi_eq):
+    """The flight's rounding scale at the contact, as bounce.power_flight._contact forms it: the
+    terms of x = x0 + u0 t - gamma t^2/2 - (xi(t) - xi0) over the flight."""
+    return d.x + abs(d.xdot) * T + 0.5 * gamma * T * T + abs(float(xi_T) - (xi_eq + d.eta) - d.xidot * T)
+
+
+def test_onset_from_a_flight_is_a_sticky_start_then_the_reference_detach(onset):
+    """The rounded start lands on the floor within the classifier's window of the exact onset.
+
+    Expectation: sticky_start, not an impact or a grazing.  Rounding the start moves x near the
+    onset by at most the contact's rounding level xn (bounce.events.rounding_level), and x ~ F' s^3/6
+    there (s = t - T, x'' = F = 0), so the rounded flight meets the floor within delta3 =
+    (6 xn/|F'|)^(1/3) of T, with |x'| <= |F'| delta3^2/2 and x'' <= |F'| delta3: below the
+    tangential speed and the onset window of bounce.events.contact (4 times these), i.e. a
+    sticky onset to rounding; test_perturbed_starts shows that perturbations beyond xn are impacts.
+    Checked:
+      * sticky_start within 2 delta3 of T, x' = 0, and the state there the exact flight's at the
+        recorded time t0 (xi, xi' to 1e-15 of |xi'| + |eta| + gamma);
+      * the sticky phase from that state, through xi = 0, to the detach: time, xi, xi' to 1e-14
+        (the reference started from the exact flight at t0, not from the solver's numbers);
+      * against the exact hybrid motion (sticky from T on), the detach moves by the onset's offset
+        dt = t0 - T at second order only: the flight and the sticky motion share xi, xi', xi''
+        at F = 0 and differ in xi''' by F'/2, so the sticky phase starts with xi' off by
+        sign(dt) |F'| dt^2/4; the detach then moves by S sign(dt) |F'| dt^2/4, S = d t_detach / d xi'
+        of the reference (finite difference), to 10% (the next order is O(|dt|) relative).
+    """
+    gamma, mu, T, law, xi_eq, flight, d = onset
+    tr = simulate_power(Parameters(gamma, mu, HERTZ), HERTZ, d, max_events=2)
+    assert tr.kind_names == ("sticky_start", "detach"), (tr.kind_names, tr.stop_reason)
+    with mp.workdps(DPS):
+        xi_T = flight.xi_c
+        xn, _, _, delta3 = contact_window(contact_scale(d, gamma, T, xi_T, xi_eq), 0.0, float(flight.Fp))
+        t0, t1 = tr.t[0], tr.t[1]
+        dt = t0 - T
+        assert abs(dt) <= 2 * delta3 and tr.xdot[0] == 0.0, (dt, delta3)
+        _, _, xi0, xid0 = flight.state(t0)  # the exact flight at the recorded onset time
+        scale = abs(xid0) + abs(xi0 - xi_eq) + gamma
+        assert abs(mpf(tr.xidot[0]) - xid0) <= 1e-15 * scale and abs(xi_eq + mpf(tr.eta[0]) - xi0) <= 1e-15 * scale
+
+        td, xi_d, xid_d, F_in = sticky_reference(gamma, mu, xi0, xid0)
+        assert F_in < 0  # no detach before xi = 0
+        assert abs(mpf(t1) - (mpf(t0) + td)) <= 1e-14 * t1, (t1, t0 + td)
+        scale = abs(xid_d) + abs(xi_d - xi_eq) + gamma
+        assert abs(xi_eq + mpf(tr.eta[1]) - xi_d) <= 1e-14 * scale and abs(mpf(tr.xidot[1]) - xid_d) <= 1e-14 * scale
+
+        td_exact = sticky_reference(gamma, mu, flight.xi_c, flight.v)[0]
+        step = mpf(10) ** -9
+        S = (sticky_reference(gamma, mu, flight.xi_c, flight.v + step)[0] - td_exact) / step
+        predicted = S * np.sign(dt) * abs(flight.Fp) * mpf(dt) ** 2 / 4
+        moved = mpf(t1) - (T + td_exact)
+        print(f"onset offset dt = {dt:.3e} (delta3 = {delta3:.3e}); detach moved by {float(moved):.4e}, "
+              f"predicted {float(predicted):.4e}")
+        assert abs(moved - predicted) <= 0.1 * abs(predicted) + 1e-14 * t1, (moved, predicted)
