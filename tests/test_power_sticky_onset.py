@@ -9,11 +9,12 @@ tests/test_events.py does for the linear law: at the onset the lower mass is on 
 and F' = x''' < 0 (bounce.power_flight.floor_force: F' = f'(xi) v + 2 mu b |xi|^(b-1) sign(xi) v^2
 - 2 mu gamma |xi|^b at F = 0).  For Hertz (rho = 1, a = b = 1/2) and xi_c < 0 this needs the
 damping to lift the lower mass (v > 0), and the sticky phase that follows crosses the rest length
-xi = 0 before it detaches (a scan of gamma, mu, xi_c found no onset whose sticky phase detaches with
-xi < 0 throughout).  The flight before the onset is integrated backwards for a time T with
-mpmath.odefun (time reversed: z(s) = xi(T - s) solves z'' = -f(z) + 2 mu z' |z|^b; xi < 0 on it, where
-the field is analytic), psi is the exact parabola, and the start (x, x', xi', xi) is rounded to
-float64.
+xi = 0 before it detaches (a scan of gamma in {0.01, 0.05, 0.1}, mu in [0.02, 2], |xi_c| in
+[0.005, 1] found no onset whose sticky phase detaches with xi < 0 throughout, so the reference
+must cross xi = 0).  The flight before the onset is integrated backwards for a time T with
+mpmath.odefun (time reversed: z(s) = xi(T - s) solves z'' = -f(z) + 2 mu z' |z|^b; xi < 0 on it,
+where the field is analytic), psi is the exact parabola, and the start (x, x', xi', xi) is
+rounded to float64.
 
 Independent references, written here from the Discussion's equations and sharing no code with
 bounce: the flight (mpmath.odefun, both sides of the onset), and the sticky phase
@@ -26,13 +27,15 @@ one integration and the start of the next).  Each reference is checked at two pr
 
 from __future__ import annotations
 
+import functools
+
 import mpmath
 import numpy as np
 import pytest
 from mpmath import mp, mpf
 
 from bounce import Deviations, Parameters
-from bounce.events import contact_window, rounding_level
+from bounce.events import GRAZING, IMPACT, contact_window
 from bounce.power_events import simulate_power
 from bounce.power_flight import floor_force
 from bounce.power_series import L_XI_EQ, law_array
@@ -40,7 +43,7 @@ from bounce.springs.power import PowerSpring
 
 HERTZ = PowerSpring(1.0, 0.5, 0.5)
 EPS = np.finfo(float).eps
-DPS = 30
+DPS = 20  #: working digits of the references (their error is ~1e-20 relative: test_references_two_precisions_agree)
 #: (gamma, mu, xi_c, T): the onset's spring compression and the flight time before it
 ONSETS = {"g0.1_mu1": (0.1, 1.0, -0.05, 0.3), "g0.01_mu0.2": (0.01, 0.2, -0.01, 0.3)}
 
@@ -85,7 +88,9 @@ class Flight:
 
 def sticky_reference(gamma, mu, xi0, v0):
     """Hertz sticky phase from (xi0 < 0, xi' = v0 > 0) through xi = 0 to its detach (module docstring):
-    (t_detach, xi, xi', F at the start's side maximum) as mpf; xi' must stay > 0 (asserted)."""
+    (t_detach, xi, xi', F_in) as mpf, F_in the largest F sampled on the xi < 0 side after the start
+    (where F = 0 at an onset); xi' must stay > 0 (asserted at the crossing and the detach; a zero in
+    between would stop odefun, which divides by it)."""
     g, m, xi0, v0 = (mpf(q) for q in (gamma, mu, xi0, v0))
     s0 = mp.sqrt(-xi0)
 
@@ -116,15 +121,21 @@ def sticky_reference(gamma, mu, xi0, v0):
     return t_d, s_d * s_d, v_d, F_in
 
 
-@pytest.fixture(scope="module", params=list(ONSETS))
-def onset(request):
-    gamma, mu, xi_c, T = ONSETS[request.param]
+@functools.lru_cache(maxsize=None)
+def built(name):
+    """(gamma, mu, T, law, xi_eq, flight reference, rounded start) of ONSETS[name]."""
+    gamma, mu, xi_c, T = ONSETS[name]
     law = law_array(1.0, 0.5, 0.5, mu, gamma)
     xi_eq = float(law[L_XI_EQ])
     with mp.workdps(DPS):
         flight = Flight(gamma, mu, xi_c, T)
         d = flight.start(xi_eq)
     return gamma, mu, T, law, xi_eq, flight, d
+
+
+@pytest.fixture(params=list(ONSETS))
+def onset(request):
+    return built(request.param)
 
 
 def test_onset_construction(onset):
@@ -140,18 +151,17 @@ def test_onset_construction(onset):
 
 def test_references_two_precisions_agree():
     """The references' own truncation and rounding: the flight's start and the sticky phase's
-    detach at DPS and DPS + 10 digits agree to 10^(5 - DPS) relative."""
+    detach at DPS and DPS + 4 digits agree to 10^(2 - DPS) relative (far below the 1e-15 used)."""
     gamma, mu, xi_c, T = ONSETS["g0.1_mu1"]
-    runs = []
-    for dps in (DPS, DPS + 10):
-        with mp.workdps(dps):
-            flight = Flight(gamma, mu, xi_c, T)
-            runs.append((flight.state(0), sticky_reference(gamma, mu, flight.xi_c, flight.v)))
-    with mp.workdps(DPS + 10):
-        (start_lo, sticky_lo), (start_hi, sticky_hi) = runs
-        tol = mpf(10) ** (5 - DPS)
-        assert all(abs(a - b) <= tol * abs(b) for a, b in zip(start_lo, start_hi))
-        assert all(abs(a - b) <= tol * abs(b) for a, b in zip(sticky_lo[:3], sticky_hi[:3]))
+    flight = built("g0.1_mu1")[5]
+    with mp.workdps(DPS):
+        low = flight.state(0), sticky_reference(gamma, mu, flight.xi_c, flight.v)[:3]
+    with mp.workdps(DPS + 4):
+        fine = Flight(gamma, mu, xi_c, T)
+        high = fine.state(0), sticky_reference(gamma, mu, fine.xi_c, fine.v)[:3]
+        tol = mpf(10) ** (2 - DPS)
+        for lo, hi in zip(low, high):
+            assert all(abs(a - b) <= tol * abs(b) for a, b in zip(lo, hi)), (lo, hi)
 
 
 def contact_scale(d, gamma, T, xi_T, xi_eq):
@@ -207,3 +217,73 @@ def test_onset_from_a_flight_is_a_sticky_start_then_the_reference_detach(onset):
         print(f"onset offset dt = {dt:.3e} (delta3 = {delta3:.3e}); detach moved by {float(moved):.4e}, "
               f"predicted {float(predicted):.4e}")
         assert abs(moved - predicted) <= 0.1 * abs(predicted) + 1e-14 * t1, (moved, predicted)
+
+
+def test_perturbed_starts_are_impacts_or_misses():
+    """Non-genericity: perturbed starts of the onset's flight (g0.1_mu1) give impacts, a grazing
+    only when tuned on a curve, a sticky onset only at the constructed point.
+
+    Shifting the start's x by dx and x' by du (xi, xi' kept) moves psi only, so the perturbed flight
+    is exactly x(t) + dx + du t (x the reference flight; dx, du include the start's own rounding,
+    exact in mpmath).  Near T, x ~ F' s^3/6 (F' < 0) is decreasing through the floor, so every small
+    (dx, du) meets the floor near T: an impact, at the root t* of x + dx + du t with the speed
+    -(x'(t*) + du) (here ~1e-9 to 1e-6, far above the tangential threshold of the contact window).
+    With du = eps > 0, x + eps t has a local minimum at t_g < T (x'(t_g) = -eps, x'' > 0); tuning dx so
+    that it touches the floor gives a grazing (eq. swishes), dx a little lower an impact before t_g,
+    a little higher a flight that misses the floor there and lands after T.  Checked against the
+    reference: the kind, the time to 2 xn/|x'| (the rounding window of a simple root; xn the
+    contact's rounding level), the speed to |x''| times the time's error plus 8 eps of its terms.
+    """
+    gamma, mu, T, law, xi_eq, flight, d = built("g0.1_mu1")
+    params = Parameters(gamma, mu, HERTZ)
+    with mp.workdps(DPS):
+        x_0, u_0, _, _ = flight.state(0)
+        Fp = abs(flight.Fp)
+
+        def first_contact_ref(dx, du, lo, hi):
+            root = mp.findroot(lambda t: flight.state(t)[0] + dx + du * t, (mpf(lo), mpf(hi)), solver="anderson")
+            x, xd, _, _ = flight.state(root)
+            x2 = (flight.state(root + mpf(10) ** -8)[1] - xd) * 10**8  # x'' by a difference (to ~1e-4)
+            return root, xd + du, x2
+
+        # tangency of x + du t before T: x'(t_g) = -du, for the start's x' + 1e-8 as rounded
+        xdot_graze = float(d.xdot + 1e-8)
+        eps_u = mpf(xdot_graze) - u_0
+        s_g = float(mp.sqrt(2 * eps_u / Fp))
+        t_g = mp.findroot(lambda t: flight.state(t)[1] + eps_u, (T - 3 * s_g, T - s_g / 3), solver="anderson")
+        dx_graze = -(flight.state(t_g)[0] + eps_u * t_g)  # x(t_g) + dx + du t_g = 0
+        # the tangency itself is decided at the rounding level (the start's rounding of xi, xi' moves x
+        # by ~1e-18 there: a miss by that much is as right as a grazing), so the grazing is aimed
+        # 2 xn into the floor: a contact of speed ~sqrt(4 x'' xn), tangential for the classifier
+        x2_g = float(flight.state(t_g + mpf(10) ** -8)[1] - flight.state(t_g)[1]) * 1e8
+        xn_g = contact_window(contact_scale(d, gamma, float(t_g), flight.state(t_g)[2], xi_eq), x2_g, 0.0)[0]
+        cases = []  # (dx, du, expected kind, bracket of the first contact)
+        for dx in (-1e-10, -1e-13, 1e-13, 1e-10):
+            w = 10 * (6 * abs(dx) / float(Fp)) ** (1 / 3)
+            cases.append((dx, 0.0, IMPACT, (T - w, T) if dx < 0 else (T, T + w)))
+        for du in (-1e-9, 1e-9):  # x + du t: the root moves by ~(6 |du| T / |F'|)^(1/3), before T if du < 0
+            w = 10 * (6 * abs(du) * T / float(Fp)) ** (1 / 3)
+            cases.append((0.0, du, IMPACT, (T - w, T) if du < 0 else (T, T + w)))
+        cases += [(dx_graze - 1e-13, None, IMPACT, (t_g - 3 * s_g, t_g)),
+                  (dx_graze - 2 * xn_g, None, GRAZING, None),
+                  (dx_graze + 1e-13, None, IMPACT, (T, T + 20 * s_g))]  # misses at t_g, lands after T
+        for dx, du, kind, bracket in cases:
+            if du is None:  # around the tangency: dx is measured from the exact start, x' as above
+                start = Deviations(float(x_0 + dx), xdot_graze, d.xidot, d.eta)
+            else:
+                start = Deviations(float(d.x + dx), float(d.xdot + du), d.xidot, d.eta)
+            dx_e, du_e = mpf(start.x) - x_0, mpf(start.xdot) - u_0  # exact, with the start's rounding
+            tr = simulate_power(params, HERTZ, start, max_events=1)
+            assert tr.kind[0] == kind, (dx, du, tr.kind_names)
+            if kind == GRAZING:  # at t_g within the window delta2 = sqrt(2 xn/x''), nothing exchanged
+                delta2 = contact_window(contact_scale(d, gamma, float(t_g), flight.state(t_g)[2], xi_eq), x2_g, 0.0)[2]
+                assert abs(tr.t[0] - float(t_g)) <= 2 * delta2 and tr.xdot[0] == 0.0, (tr.t[0], t_g, delta2)
+                continue
+            t_star, xd_star, x2 = first_contact_ref(dx_e, du_e, *bracket)
+            xn = contact_window(contact_scale(start, gamma, float(t_star), flight.state(t_star)[2], xi_eq), 0, 0)[0]
+            window = 2 * xn / abs(xd_star)
+            assert abs(tr.t[0] - t_star) <= window + 1e-15 * t_star, (dx, du, tr.t[0], t_star, window)
+            # the recorded speed is the flight's at the recorded time: x'(t*) + x'' (t - t*), to rounding
+            speed_tol = 1.1 * abs(x2) * abs(tr.t[0] - t_star) + 8 * EPS * (abs(start.xdot) + gamma * tr.t[0]
+                                                                            + abs(start.xidot))
+            assert abs(tr.xdot[0] + xd_star) <= speed_tol, (dx, du, tr.xdot[0], -xd_star, speed_tol)
