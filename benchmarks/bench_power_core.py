@@ -8,10 +8,11 @@ Runs bounce.power_events.run_power_events from a state near the static equilibri
 (compilation), and prints the median impacts/s over the repeats, timed in process CPU
 time (the machine may be shared; CPU time is what one core delivers).
 
-Then the cost of one Hertz sticky phase (bounce.power_sticky.sticky_phase, to its detach or
-its never-detach proof) for four starts at rest on the floor: the median CPU time per phase,
-and the series steps and step-size trials per phase, counted by running the kernel's Python
-function (``py_func``) with counting wrappers around taylor_coefficients and tail_bounds.
+Before that (alone with --sticky-only), the cost of one Hertz sticky phase
+(bounce.power_sticky.sticky_phase, to its detach or its never-detach proof) for four starts at
+rest on the floor: the median CPU time per phase, and the series steps and step-size trials per
+phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
+around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
 """
 
 from __future__ import annotations
@@ -22,18 +23,21 @@ import time
 import numpy as np
 
 from bounce import power_sticky
+from bounce.flight import FOUND, NEVER
 from bounce.power_events import run_power_events
 from bounce.power_series import DEGREE_LONG, L_XI_EQ, law_array
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
-#: crossing the rest length xi = 0, the onset of tests/test_power_sticky_onset.py (F = 0, F' < 0;
+#: crossing the rest length xi = 0 (both of tests/test_power_sticky.py), the onset g0.1_mu1 of
+#: tests/test_power_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
 #: detaches after crossing xi = 0), and a phase proved infinite
 STICKY_STARTS = {
     "detach": (0.01, 0.5, -0.0696, -0.2),
     "crossing": (0.05, 0.3, -0.1, 0.3),
-    "onset": (0.1, 1.0, -0.04843, 0.2514174242371366),
+    "onset": (0.1, 1.0, -0.05, 0.24860679774997899),
     "never": (0.01, 0.5, -0.10, 0.0),
 }
+STATUS = {FOUND: "detach", NEVER: "proved infinite"}
 
 
 def rate(rho, a, b, gamma, mu, n, repeats):
@@ -91,7 +95,7 @@ def main() -> None:
     for name, start in STICKY_STARTS.items():
         sec, steps, trials, status, duration = sticky_costs(*start, calls=200, repeats=args.repeats)
         print(f"sticky {name:8s} {sec * 1e6:9.1f} us/phase  {steps:4d} series steps  {trials:4d} step-size trials  "
-              f"(status {status}, duration {duration:.6f})")
+              f"({STATUS.get(status, status)} after {duration:.6f})")
     if args.sticky_only:
         return
     for name, law in (("hertz", (1.0, 0.5, 0.5)), ("linear", (1.0, 0.0, 0.0)), ("a=1,b=0", (2.0, 1.0, 0.0))):
