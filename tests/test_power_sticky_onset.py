@@ -34,6 +34,8 @@ import numpy as np
 import pytest
 from mpmath import mp, mpf
 
+import power_reference as PR
+
 from bounce import Deviations, Parameters
 from bounce.events import GRAZING, IMPACT, contact_window
 from bounce.power_events import simulate_power
@@ -86,24 +88,31 @@ class Flight:
         return Deviations(float(x), float(xd), float(xid), float(xi - mpf(xi_eq)))
 
 
+def sticky_inward(gamma, mu, xi0, v0):
+    """(s0, (xi', t) as functions of r) on the xi < 0 side: xi = -(s0 - r)^2, s0 = sqrt(-xi0), r in [0, s0]."""
+    g, m, xi0, v0 = (mpf(q) for q in (gamma, mu, xi0, v0))
+    s0 = mp.sqrt(-xi0)
+
+    def inward(r, y):  # f = -s^3, |xi|^(1/2) = s = s0 - r, dxi/dr = 2 s
+        s = s0 - r
+        acc = -(g - s**3 + 2 * m * y[0] * s) / 2
+        return [2 * s * acc / y[0], 2 * s / y[0]]
+
+    return s0, mpmath.odefun(inward, 0, [v0, mpf(0)])
+
+
 def sticky_reference(gamma, mu, xi0, v0):
     """Hertz sticky phase from (xi0 < 0, xi' = v0 > 0) through xi = 0 to its detach (module docstring):
     (t_detach, xi, xi', F_in) as mpf, F_in the largest F sampled on the xi < 0 side after the start
     (where F = 0 at an onset); xi' must stay > 0 (asserted at the crossing and the detach; a zero in
     between would stop odefun, which divides by it)."""
-    g, m, xi0, v0 = (mpf(q) for q in (gamma, mu, xi0, v0))
-    s0 = mp.sqrt(-xi0)
-
-    def inward(r, y):  # xi = -(s0 - r)^2: f = -s^3, |xi|^(1/2) = s, dxi/dr = 2 s
-        s = s0 - r
-        acc = -(g - s**3 + 2 * m * y[0] * s) / 2
-        return [2 * s * acc / y[0], 2 * s / y[0]]
+    g, m = mpf(gamma), mpf(mu)
+    s0, sol_in = sticky_inward(gamma, mu, xi0, v0)
 
     def outward(s, y):  # xi = s^2
         acc = -(g + s**3 + 2 * m * y[0] * s) / 2
         return [2 * s * acc / y[0], 2 * s / y[0]]
 
-    sol_in = mpmath.odefun(inward, 0, [v0, mpf(0)])
     # no detach before xi = 0: F = -s^3 + 2 mu xi' s - gamma < 0 after the start (sampled)
     F_in = max(-(s0 - r) ** 3 + 2 * m * sol_in(r)[0] * (s0 - r) - g for r in np.linspace(0.05, 1, 20) * s0)
     v_c, t_c = sol_in(s0)
@@ -162,6 +171,21 @@ def test_references_two_precisions_agree():
         tol = mpf(10) ** (2 - DPS)
         for lo, hi in zip(low, high):
             assert all(abs(a - b) <= tol * abs(b) for a, b in zip(lo, hi)), (lo, hi)
+
+
+def test_sticky_reference_agrees_with_the_time_stepped_one():
+    """On the xi < 0 side the s = sqrt|xi| reference meets tests/power_reference.reference_sticky
+    (Taylor steps in t, the reference of tests/test_power_sticky.py): from the onset of g0.1_mu1
+    to half-way to xi = 0 in s (t = 0.155), xi and xi' agree to 10^(2 - DPS) relative (measured:
+    3e-23 in xi, 0 in xi')."""
+    gamma, mu, T, law, xi_eq, flight, d = built("g0.1_mu1")
+    with mp.workdps(DPS):
+        s0, sol_in = sticky_inward(gamma, mu, flight.xi_c, flight.v)
+        v_half, t_half = sol_in(s0 / 2)
+        stepped = PR.reference_sticky(gamma, mu, 1.0, 0.5, 0.5, flight.v, flight.xi_c, t_half, dps=DPS)
+        assert stepped["t_detach"] is None
+        tol = mpf(10) ** (2 - DPS)
+        assert abs(stepped["xi"] + s0**2 / 4) <= tol * s0**2 / 4 and abs(stepped["xidot"] - v_half) <= tol * v_half
 
 
 def contact_scale(d, gamma, T, xi_T, xi_eq):
