@@ -268,7 +268,7 @@ def test_perturbed_starts_are_impacts_or_misses():
     is exactly x(t) + dx + du t (x the reference flight; dx, du include the start's own rounding,
     exact in mpmath).  Near T, x ~ F' s^3/6 (F' < 0) is decreasing through the floor, so every small
     (dx, du) meets the floor near T: an impact, at the root t* of x + dx + du t with the speed
-    -(x'(t*) + du) (here ~1e-9 to 1e-6, far above the tangential threshold of the contact window).
+    -(x'(t*) + du) (here 2e-9 to 5e-7, far above the tangential threshold of the contact window).
     With du = eps > 0, x + eps t has a local minimum at t_g < T (x'(t_g) = -eps, x'' > 0); tuning dx so
     that it touches the floor gives a grazing (eq. swishes), dx a little lower an impact before t_g,
     a little higher a flight that misses the floor there and lands after T.  Checked against the
