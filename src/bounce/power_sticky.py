@@ -26,7 +26,9 @@ Detachment cannot be skipped.  On a step of length h = theta r_c (r_c the Cauchy
 polynomial p(s) = gamma + D''(s) = -F/2 has |p''| <= B_p = sum_k k(k-1)(k-2)(k-3) |X_k| theta^(k-4)
 / r_c^4 and differs from the true gamma + xi'' by at most
 tail_p = Rz (K+1) K theta^(K-1) / (r_c^2 (1 - theta (K+2)/K)) (Cauchy's estimate
-|X_k| <= Rz, as in :mod:`bounce.power_series`).  The march steps by the smallest root of
+|X_k| <= Rz, as in :mod:`bounce.power_series`); theta is the largest (to 2%) that keeps the tails of
+xi, xi' and p below 2^-64 of their scales, solved from their powers theta^(K+1), theta^K, theta^(K-1)
+as in :mod:`bounce.power_flight`.  The march steps by the smallest root of
 p + p' s - B_p s^2/2 (so p stays positive between points) and stops where p is within
 tail_p + noise (noise: 8 eps of its terms) of zero; a root there with p' < 0 is polished by a
 Newton step on p, then by Newton steps on F formed from the state at the root
@@ -168,6 +170,12 @@ def _window(T, v, c, m2):
 
 
 @njit(cache=True)
+def _tail_p(theta, H, K, Rz):
+    """tail_p: bound of the truncated terms of p = gamma + D'' on |s| <= theta H (module docstring)."""
+    return Rz * (K + 1.0) * K * theta ** (K - 1) / (H * H * (1.0 - theta * (K + 2.0) / K)) * MARGIN
+
+
+@njit(cache=True)
 def _poly_bound(order, theta, H, K, X):
     """sum_{k>=order} k!/(k-order)! |X_k| theta^(k-order) / H^order: bounds the order-th
     derivative of the truncated series on |s| <= theta H."""
@@ -254,11 +262,23 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
         for _ in range(200):
             h = theta * radius
             tx, tv = tail_bounds(theta, K, Rz, Rp)
-            tp = Rz * (K + 1.0) * K * theta ** (K - 1) / (radius * radius * (1.0 - theta * (K + 2.0) / K)) * MARGIN
-            if (tx <= TOL_LONG * (abs(eta) + abs(v) * h + 0.5 * xidd0 * h * h)
-                    and tv <= TOL_LONG * (abs(v) + xidd0 * h) and tp <= TOL_LONG * (gamma + xidd0)):
+            tp = _tail_p(theta, radius, K, Rz)
+            tol_x = TOL_LONG * (abs(eta) + abs(v) * h + 0.5 * xidd0 * h * h)
+            tol_v = TOL_LONG * (abs(v) + xidd0 * h)
+            tol_p = TOL_LONG * (gamma + xidd0)
+            if tx <= tol_x and tv <= tol_v and tp <= tol_p:
                 break
-            theta *= 0.7
+            # tx ~ theta^(K+1), tv ~ theta^K, tp ~ theta^(K-1) (their denominators only grow as theta
+            # shrinks): shrink to where the failing ones meet this theta's scales (which shrink with
+            # theta too, hence the loop), by at least 2% and at most 10x per pass, as power_flight does
+            fit = 1.0
+            if tx > tol_x:
+                fit = min(fit, (tol_x / tx) ** (1.0 / (K + 1.0)))
+            if tv > tol_v:
+                fit = min(fit, (tol_v / tv) ** (1.0 / K))
+            if tp > tol_p:
+                fit = min(fit, (tol_p / tp) ** (1.0 / (K - 1.0)))
+            theta *= max(min(fit, 0.98), 0.1)
         h = theta * radius
         last = t + h >= t_limit
         if last:
@@ -267,7 +287,7 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
         if not dense:
             th = h / radius
             Bp = _poly_bound(4, th, radius, K, X) * MARGIN
-            tp = Rz * (K + 1.0) * K * th ** (K - 1) / (radius * radius * (1.0 - th * (K + 2.0) / K)) * MARGIN
+            tp = _tail_p(th, radius, K, Rz)
             level = tp + 8.0 * EPS * (abs(f0) + gamma + mu * abs(v) * q0)  # p at zero within it
             s = 0.0
             d2, d3 = curvature(0.0, radius, K, X)
