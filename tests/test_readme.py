@@ -37,6 +37,13 @@ def test_readme_lists_every_claim_group_in_config_order():
     assert listed == configured
 
 
+def test_tests_readme_lists_every_test_file():
+    """tests/README.md says what each test file protects: a new test file without a row fails here."""
+    text = (ROOT / "tests" / "README.md").read_text()
+    missing = [f.name for f in sorted((ROOT / "tests").glob("test_*.py")) if f"| `{f.name}` |" not in text]
+    assert not missing, missing
+
+
 def test_update_replaces_only_the_block(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text(f"intro\n{BEGIN}\nold 1.0 s\n{END}\noutro\n")
