@@ -254,12 +254,12 @@ def test_horizon_chaotic_transient():
 
 
 def test_yardstick_reach_stops_where_the_self_check_decorrelates():
-    """Comparisons stop at the first impact where the dps_low self-check is off the yardstick by more than 1e-2
-    (the yardstick's own error is unbounded beyond); a self-check that never departs keeps every impact."""
+    """Comparisons stop at the first impact where the dps_low self-check is off the yardstick by more than 1e-4
+    (beyond, nothing bounds the yardstick's own error); a self-check that never departs keeps every impact."""
     t_ref = np.arange(1.0, 101.0)
     growth = 1e-30 * np.exp(np.arange(100.0))  # an error growing by e per impact, from 1e-30
     k = horizon.yardstick_reach(t_ref * (1 + growth), t_ref, 100)
-    assert growth[k - 1] > 1e-2 >= growth[k - 2]
+    assert growth[k - 1] > 1e-4 >= growth[k - 2]
     assert horizon.yardstick_reach(t_ref, t_ref, 100) == 100
     assert horizon.yardstick_reach(t_ref * (1 + growth), t_ref, 20) == 20
 
