@@ -74,6 +74,24 @@ Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
 within rounding of it).
+
+Long flights: the error bound.  Each step is exact to rounding, and the state is carried in
+hi + lo parts; what remains is the float64 evaluation of each step (the rounded coefficients and
+polynomial, the start state rounded to the double the series is taken at), which changes the
+spring energy by ~1 ulp, independently from step to step.  Over a flight the energy error is a
+random walk, measured for Hertz at ~0.8 eps relative per crossing of xi = 0 (plus a bias of
+~0.03 eps; exact coefficients and evaluation would leave ~0.2 eps, the float coefficients' rounding).
+The frequency of the nonlinear spring depends on its energy (omega ~ E^(a/(2(a+2))), 1/10 for
+Hertz), so the walk turns into a phase error: after n crossings xi, xi' and eta are off by
+~ (a/(2(a+2))) pi n sigma_E / sqrt(3) relative to the swing W, with sigma_E ~ 0.8 eps sqrt(n)
+(Hertz: ~0.15 eps n^(3/2)), while tau, x and x' stay within a few ulps (psi is a parabola).  So
+1e-14 holds up to ~70 crossings (tests/test_power_reference.py, 45 crossings: 2.6e-15) and the
+~2700 crossings of a 6e4-long flight end ~1.5e-12 W off, with the energy (mu = 0) within 1e-14
+(tests/test_power_core.py).  This is the problem's conditioning, not the method's: one half-ulp
+rounding of xi at the start of such a flight already moves its end by
+~ (a/(2(a+2))) pi n (a+2) eps/2 (~1e-13 W for Hertz, n = 2700), and a march of independent
+roundings adds them like sqrt(n).  ``python benchmarks/bench_power_long_flight.py`` prints the
+error along such a flight against tests/power_reference.py and the energy walk.
 """
 
 from __future__ import annotations
@@ -404,8 +422,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
         t = t_hi + t_lo
         # fold the compensation of eta, xi' into the leading part (an exact two-sum): the step's series is
         # taken at the leading parts, so an unfolded lo (a running sum of roundings, grown to ~10 ulps over
-        # a swing) was a force offset of one sign for many steps: a systematic energy drift (measured:
-        # 4e-16 -> 8e-17 relative per crossing of xi = 0 for Hertz)
+        # a swing) was a force offset of one sign for many steps: an energy drift 5x the random walk of
+        # the module docstring (measured for Hertz: 4e-16 -> 8e-17 relative per crossing of xi = 0)
         eta, el = compensated_add(eta, 0.0, el)
         v, vl = compensated_add(v, 0.0, vl)
         xi0 = xi_eq + eta
