@@ -301,7 +301,7 @@ def test_long_flight_of_a_weakly_damped_spring_is_not_capped(mu):
     spring energy xi'^2/2 + |xi|^(5/2)/(5/2) of the flight conserved.  From the recorded events
     xi'(tau-) = psi' - x' cancels (~0.6 each, ulp ~1e-16 against xi' ~6e-5: up to ~7e-12 of the
     energy); from the flight's own xi'(tau) (power_flight.first_contact) the energy is conserved to
-    its random walk of roundings, ~0.8 eps per crossing (power_flight docstring): measured 8e-15
+    its random walk of roundings, ~8e-17 per crossing (power_flight docstring): measured 8e-15
     (4.4e-14 before the compensation of eta, xi' was folded into the state each step starts from)."""
     gamma, x0 = 1e-5, 2e4
     xi_eq = HERTZ.xi_eq(gamma)

@@ -106,7 +106,7 @@ def test_long_flight_through_many_crossings_matches_reference():
     its rest length ~45 times (~4e3 series steps): flight time and post-impact state to 1e-14, eta
     relative to the swing W = |xi_eq| (eta sweeps [0, 2W] over and over; it is summed from steps of
     that size).  The bound of power_flight's docstring for long flights: the energy's random walk of
-    roundings (~0.8 eps per crossing) becomes a phase error ~0.15 eps n^(3/2) after n crossings through
+    roundings (~8e-17 per crossing) becomes a phase error ~1.5e-17 n^(3/2) (rms) after n crossings through
     the energy-dependent frequency, 5e-15 here (measured 2.6e-15; 2.3e-14 when the compensation of
     eta, xi' was not folded into the state the series is taken at).  The reference at 30 digits (it
     agrees with its 40-digit run to 1e-25 relative in tau and eta; 50 digits would double the ~2 s)."""

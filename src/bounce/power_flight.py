@@ -79,19 +79,20 @@ Long flights: the error bound.  Each step is exact to rounding, and the state is
 hi + lo parts; what remains is the float64 evaluation of each step (the rounded coefficients and
 polynomial, the start state rounded to the double the series is taken at), which changes the
 spring energy by ~1 ulp, independently from step to step.  Over a flight the energy error is a
-random walk, measured for Hertz at ~0.8 eps relative per crossing of xi = 0 (plus a bias of
-~0.03 eps; exact coefficients and evaluation would leave ~0.2 eps, the float coefficients' rounding).
-The frequency of the nonlinear spring depends on its energy (omega ~ E^(a/(2(a+2))), 1/10 for
-Hertz), so the walk turns into a phase error: after n crossings xi, xi' and eta are off by
-~ (a/(2(a+2))) pi n sigma_E / sqrt(3) relative to the swing W, with sigma_E ~ 0.8 eps sqrt(n)
-(Hertz: ~0.15 eps n^(3/2)), while tau, x and x' stay within a few ulps (psi is a parabola).  So
-1e-14 holds up to ~70 crossings (tests/test_power_reference.py, 45 crossings: 2.6e-15) and the
-~2700 crossings of a 6e4-long flight end ~1.5e-12 W off, with the energy (mu = 0) within 1e-14
-(tests/test_power_core.py).  This is the problem's conditioning, not the method's: one half-ulp
-rounding of xi at the start of such a flight already moves its end by
-~ (a/(2(a+2))) pi n (a+2) eps/2 (~1e-13 W for Hertz, n = 2700), and a march of independent
-roundings adds them like sqrt(n).  ``python benchmarks/bench_power_long_flight.py`` prints the
-error along such a flight against tests/power_reference.py and the energy walk.
+random walk, measured for Hertz at sigma_1 = 8e-17 = 0.4 eps (eps = 2^-52) relative per crossing
+of xi = 0, plus a bias of ~0.02 eps (exact coefficients and evaluation would leave 0.1 eps, the
+rounding of the float coefficients).  The frequency of the nonlinear spring depends on its energy
+(omega ~ E^c, c = a/(2(a+2)): 1/10 for Hertz), so the walk turns into a phase error: after n
+crossings xi, xi' and eta are off by ~ c pi sigma_1 n^(3/2) / sqrt(3) relative to the swing W (rms;
+Hertz: 1.5e-17 n^(3/2), single values within ~3x of it), while tau, x and x' stay within a few
+ulps (psi is a parabola).  So 1e-14 holds to ~70 crossings (tests/test_power_reference.py: 45
+crossings, 2.6e-15), and the ~2800 crossings of a 6e4-long Hertz flight end with xi, xi' ~2e-12 off
+(of W and of the speed at xi = 0; the estimate: 2.3e-12) and the energy (mu = 0) within 1e-14
+(tests/test_power_core.py: 8e-15).  This is the problem's conditioning, not the method's: a
+half-ulp rounding of xi at the start of that flight alone moves its end by up to
+c pi n (a+2) eps/2 (2e-13 for Hertz, n = 2800), and a march of independent roundings adds them
+like sqrt(n).  ``python benchmarks/bench_power_long_flight.py`` prints the error along such a
+flight against tests/power_reference.py.
 """
 
 from __future__ import annotations
