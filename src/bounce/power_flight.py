@@ -74,6 +74,25 @@ Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
 within rounding of it).
+
+Long flights: the error bound.  Each step is exact to rounding, and the state is carried in
+hi + lo parts; what remains is the float64 evaluation of each step (the rounded coefficients and
+polynomial, the start state rounded to the double the series is taken at), which changes the
+spring energy by ~1 ulp, independently from step to step.  Over a flight the energy error is a
+random walk, measured for Hertz at sigma_1 = 8e-17 = 0.4 eps (eps = 2^-52) relative per crossing
+of xi = 0, plus a bias of ~0.02 eps (exact coefficients and evaluation would leave 0.1 eps, the
+rounding of the float coefficients).  The frequency of the nonlinear spring depends on its energy
+(omega ~ E^c, c = a/(2(a+2)): 1/10 for Hertz), so the walk turns into a phase error: after n
+crossings xi, xi' and eta are off by ~ c pi sigma_1 n^(3/2) / sqrt(3) relative to the swing W (rms;
+Hertz: 1.5e-17 n^(3/2), single values within ~3x of it), while tau, x and x' stay within a few
+ulps (psi is a parabola).  So 1e-14 holds to ~70 crossings (tests/test_power_reference.py: 45
+crossings, 2.6e-15), and the ~2800 crossings of a 6e4-long Hertz flight end with xi, xi' ~2e-12 off
+(of W and of the speed at xi = 0; the estimate: 2.3e-12) and the energy (mu = 0) within 1e-14
+(tests/test_power_core.py: 8e-15).  This is the problem's conditioning, not the method's: a
+half-ulp rounding of xi at the start of that flight alone moves its end by up to
+c pi n (a+2) eps/2 (2e-13 for Hertz, n = 2800), and a march of independent roundings adds them
+like sqrt(n).  ``python benchmarks/bench_power_long_flight.py`` prints the error along such a
+flight against tests/power_reference.py.
 """
 
 from __future__ import annotations
@@ -385,7 +404,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     :func:`at_rest_is_sticky`; then the last two fields are F and F') or FAILED
     (evaluation cap within a step, a step that does not advance time, a lift-off not resolved).  The state is carried
     from step to step with Neumaier compensation (x, u, eta, xi' each as hi + lo), so
-    that a flight of many steps keeps the accuracy of one evaluation to a few ulps.
+    that a flight of many steps keeps the accuracy of one evaluation to a few ulps; the lo parts
+    of eta and xi' are folded into the hi parts before each step (the series is taken there).
     ``lifting``: the caller knows that a start at rest lifts off (dense output of a recorded
     flight; F, F' within rounding of the at-rest boundary are then taken as a lift-off).
     """
@@ -401,6 +421,12 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     B = math.inf
     while True:
         t = t_hi + t_lo
+        # fold the compensation of eta, xi' into the leading part (an exact two-sum): the step's series is
+        # taken at the leading parts, so an unfolded lo (a running sum of roundings, grown to ~10 ulps over
+        # a swing) was a force offset of one sign for many steps: an energy drift 5x the random walk of
+        # the module docstring (measured for Hertz: 4e-16 -> 8e-17 relative per crossing of xi = 0)
+        eta, el = compensated_add(eta, 0.0, el)
+        v, vl = compensated_add(v, 0.0, vl)
         xi0 = xi_eq + eta
         w0 = abs(xi0)
         p0, q0 = powers_at(w0, law)
