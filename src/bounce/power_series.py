@@ -43,6 +43,25 @@ series of xi' (degree K - 1) by at most Rp theta^K / (1 - theta).  These bounds
 are what :mod:`bounce.power_flight` compares with the rounding level of x and x'.
 The coefficients themselves carry the usual relative rounding of a recurrence
 (a few ulps times the degree); they are not part of the bound.
+
+The root variable (crossings of xi = 0, :func:`root_coefficients`).  For a, b in (1/q) Z with
+q in {1, 2, 4, 8} (Hertz: q = 2) write, on one side of xi = 0 with sign s, xi = s sigma^q,
+sigma >= 0, and take sigma as the independent variable: with p = xi' and the time t,
+
+    dp/dsigma = -q (r sigma^n_a / p + 2 m s sigma^n_b),   dt/dsigma = s q sigma^(q-1) / p,     (R)
+
+n_a = q (a+2) - 1, n_b = q (b+1) - 1 (eq. ``eq-motion-nonlin-psi-xi`` times dt/dsigma): the
+right sides are polynomials in sigma and analytic in p != 0, so p and t are analytic through
+sigma = 0 (the non-analytic point of the time series) and their radius in sigma is set by
+p -> 0 (the turning point), not by |xi0|.  Coefficients around sigma0: sigma^n in powers of
+sigma - sigma0 by the binomial theorem, 1/p by the reciprocal recurrence
+R_k = -(1/p_0) sum_{j=1..k} p_j R_{k-j}, then Cauchy sums with the (short) polynomials.
+Rigorous tail: on the polydisc |sigma - sigma0| <= Rs, |p - p0| <= Rp = |p0|/2 the right sides
+are bounded by Mp = q (r S^n_a / (|p0| - Rp) + 2 m S^n_b) and Mt = q S^(q-1) / (|p0| - Rp),
+S = sigma0 + Rs (:func:`root_majorant`), so p, t are holomorphic on |sigma - sigma0| < r =
+min(Rs, Rp/Mp) with |p - p0| <= Rp, |t - t0| <= Mt r there; Cauchy's estimate bounds the series
+truncated after degree K on |sigma - sigma0| <= theta r by Rp theta^(K+1)/(1 - theta) (p) and
+Mt r theta^(K+1)/(1 - theta) (t).  Rs is chosen to maximise r (:func:`root_radius`).
 """
 
 from __future__ import annotations
@@ -68,8 +87,20 @@ INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
 
 # layout of the law array (see law_array)
 (L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B,
- L_EQ_RESIDUAL) = range(11)
-LAW_SIZE = 11
+ L_EQ_RESIDUAL, L_ROOT_Q) = range(12)
+LAW_SIZE = 12
+#: degree of the series in the root variable sigma = |xi|^(1/q) across xi = 0 (:func:`root_coefficients`).
+ROOT_DEGREE = 64
+#: the root variable is used for a, b in (1/ROOT_Q_MAX) Z (dyadic, so q a, q b are exact in float64).
+ROOT_Q_MAX = 8
+
+
+def root_denominator(a: float, b: float) -> int:
+    """q in (1, 2, 4, 8): the least with q a and q b integers, 0 if none (:func:`root_coefficients`)."""
+    for q in (1, 2, 4, ROOT_Q_MAX):
+        if float(q * a).is_integer() and float(q * b).is_integer():
+            return q
+    return 0
 
 
 def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
@@ -89,7 +120,7 @@ def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
         residual = float(Decimal(gamma) - Decimal(rho) * (Decimal(a + 1.0) * w.ln()).exp())
     return np.array([
         rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
-        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual,
+        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual, float(root_denominator(a, b)),
     ])
 
 
@@ -297,3 +328,96 @@ def curvature(s, H, K, X):
     for k in range(K - 1, 2, -1):
         d3 = d3 * z + k * (k - 1) * (k - 2) * X[k]
     return d2 / (H * H), d3 / (H * H * H)
+
+
+@njit(cache=True)
+def root_exponents(law):
+    """(q, n_a, n_b) of the series in the root variable: n_a = q (a+2) - 1, n_b = q (b+1) - 1."""
+    q = law[L_ROOT_Q]
+    return q, int(round(q * (law[L_AP1] + 1.0))) - 1, int(round(q * (law[L_B] + 1.0))) - 1
+
+
+@njit(cache=True)
+def root_majorant(sig0, p0, Rs, law):
+    """(r, Rp, Mt) of the majorant argument for the root-variable series (module docstring).
+
+    On |sigma - sig0| <= Rs, |p - p0| <= Rp = |p0|/2 the right sides of (R) are bounded by
+    Mp = q (rho S^n_a / (|p0| - Rp) + 2 mu S^n_b) and Mt = q S^(q-1) / (|p0| - Rp), S = sig0 + Rs;
+    within |sigma - sig0| < r = min(Rs, Rp / Mp): |p - p0| <= Rp and |t - t0| <= Mt |sigma - sig0|.
+    """
+    q, na, nb = root_exponents(law)
+    ap = abs(p0)
+    Rp = 0.5 * ap
+    S = sig0 + Rs
+    Mp = q * (law[L_RHO] * S**na / (ap - Rp) + 2.0 * law[L_MU] * S**nb) * MARGIN
+    Mt = q * S ** (q - 1.0) / (ap - Rp) * MARGIN
+    return min(Rs, Rp / Mp) / MARGIN, Rp, Mt
+
+
+@njit(cache=True)
+def root_radius(sig0, p0, law):
+    """(r, Rp, Mt) of :func:`root_majorant` with Rs balanced (Rs = Rp / Mp within 1%): the largest r."""
+    Rs = max(sig0, 1.0)
+    lo, hi = 0.0, math.inf
+    for _ in range(200):
+        r, Rp, Mt = root_majorant(sig0, p0, Rs, law)
+        if r >= Rs / MARGIN:  # Rs <= Rp / Mp: Rs may grow
+            lo = Rs
+        else:
+            hi = Rs
+        if hi <= 1.01 * lo:
+            break
+        Rs = 2.0 * Rs if hi == math.inf else (math.sqrt(lo * hi) if lo > 0.0 else 0.5 * Rs)
+    return root_majorant(sig0, p0, lo, law) if lo > 0.0 else root_majorant(sig0, p0, Rs, law)
+
+
+@njit(cache=True)
+def _binomial_power(n, sig0, H, S):
+    """S[j] = C(n, j) sig0^(n-j) H^j, j = 0..n: sigma^n in powers of (sigma - sig0)/H (no division by sig0)."""
+    S[n] = H**n
+    for j in range(n - 1, -1, -1):
+        S[j] = S[j + 1] * (sig0 / H) * (j + 1.0) / (n - j)
+
+
+@njit(cache=True)
+def root_coefficients(sig0, p0, side, law, H, K, Pc, Tc, R, S):
+    """H^k p^(k)/k! in Pc and H^k t^(k)/k! in Tc (k = 0..K, t(sig0) = 0) for eq. (R) around sig0.
+
+    ``side`` = sign of xi on this side of xi = 0; R, S are work arrays (R: length > K; S: length
+    > max(n_a, n_b, q - 1) + 1, three rows).  Cost O(K^2/2) (the reciprocal 1/p).
+    """
+    q, na, nb = root_exponents(law)
+    nt = int(q) - 1
+    rho = law[L_RHO]
+    mu2 = 2.0 * law[L_MU] * side
+    m = S.shape[1]
+    _binomial_power(na, sig0, H, S[0])
+    _binomial_power(nb, sig0, H, S[1])
+    _binomial_power(nt, sig0, H, S[2])
+    Pc[0] = p0
+    Tc[0] = 0.0
+    R[0] = 1.0 / p0
+    for k in range(K):
+        if k >= 1:
+            acc = 0.0
+            for j in range(1, k + 1):
+                acc += Pc[j] * R[k - j]
+            R[k] = -R[0] * acc
+        fa = 0.0
+        for j in range(0, min(k, na) + 1):
+            fa += S[0, j] * R[k - j]
+        ft = 0.0
+        for j in range(0, min(k, nt) + 1):
+            ft += S[2, j] * R[k - j]
+        fb = S[1, k] if k <= nb and k < m else 0.0
+        Pc[k + 1] = -q * H * (rho * fa + mu2 * fb) / (k + 1.0)
+        Tc[k + 1] = side * q * H * ft / (k + 1.0)
+
+
+@njit(cache=True)
+def root_series(z, K, C):
+    """sum_{k=0..K} C[k] z^k (Horner)."""
+    acc = C[K]
+    for k in range(K - 1, -1, -1):
+        acc = acc * z + C[k]
+    return acc
