@@ -200,7 +200,7 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[1] = v0 * H
     H2 = H * H
     if ap1 == b + 1.0 and not lin_b:
-        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q)
+        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
         return
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
@@ -230,19 +230,38 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
         X[k + 2] = -(H2 * force + 2.0 * m * H * damp) * INV[k + 1] * INV[k + 2]
 
 
+@njit(cache=True, inline="always")
+def _convolution(A, B, lo, hi, k):
+    """sum_{j=lo..hi} A[j] B[k-j] in four interleaved partial sums (the recurrences' Cauchy sums are
+    latency-bound with one; same value up to the rounding of the sum's order)."""
+    s0 = s1 = s2 = s3 = 0.0
+    j = lo
+    while j + 3 <= hi:
+        s0 += A[j] * B[k - j]
+        s1 += A[j + 1] * B[k - j - 1]
+        s2 += A[j + 2] * B[k - j - 2]
+        s3 += A[j + 3] * B[k - j - 3]
+        j += 4
+    while j <= hi:
+        s0 += A[j] * B[k - j]
+        j += 1
+    return (s0 + s1) + (s2 + s3)
+
+
 @njit(cache=True)
-def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
+def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
     """:func:`taylor_coefficients` for a = b > 0 (Hertz among them): one power, one product.
 
     Then r xi |xi|^a + 2 m xi' |xi|^b = (r xi + 2 m xi') Q with Q = |xi|^b, so for k >= 1
 
-        (k+1)(k+2) X_{k+2} = -(1/H) sum_{j=0..k} (H^2 r X_j + 2 m H (j+1) X_{j+1}) Q_{k-j}
+        (k+1)(k+2) X_{k+2} = -(1/H) sum_{j=0..k} Y_j Q_{k-j},   Y_j = H^2 r X_j + 2 m H (j+1) X_{j+1}
 
     (X_k in units of H; for k = 0 the restoring part is f0, as in the general case), one
     Cauchy sum instead of a Miller recurrence for |xi|^(a+1) plus one for the damping.  For
     b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
     (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
-    Same coefficients up to the rounding of the sums (a few ulps times the degree).
+    Same coefficients up to the rounding of the sums (a few ulps times the degree).  Y is a
+    work array (length > K).
     """
     H2 = H * H
     Q[0] = q0
@@ -251,10 +270,7 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
     for k in range(0, K - 1):
         if k >= 1:
             if half:
-                s = 0.0
-                for j in range(1, (k + 1) // 2):
-                    s += Q[j] * Q[k - j]
-                s *= 2.0
+                s = 2.0 * _convolution(Q, Q, 1, (k + 1) // 2 - 1, k)
                 if k % 2 == 0:
                     s += Q[k // 2] * Q[k // 2]
                 Q[k] = (sigma * X[k] - s) * inv_2q0
@@ -263,10 +279,10 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
                 for j in range(1, k + 1):
                     s += (b * j - (k - j)) * X[j] * Q[k - j]
                 Q[k] = s * inv_xi0 * INV[k]
-            acc = 0.0
-            for j in range(0, k + 1):
-                acc += (H2 * r * X[j] + 2.0 * m * H * (j + 1) * X[j + 1]) * Q[k - j]
+            Y[k] = H2 * r * X[k] + 2.0 * m * H * (k + 1) * X[k + 1]
+            acc = _convolution(Y, Q, 0, k, k)
         else:
+            Y[0] = H2 * r * X[0] + 2.0 * m * H * X[1]
             acc = H2 * f0 + 2.0 * m * H * X[1] * q0
         X[k + 2] = -acc * INV[k + 1] * INV[k + 2]
 
