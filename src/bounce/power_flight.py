@@ -372,7 +372,7 @@ def _root_crossing(xi0, v, pw0, law):
         if not (t_in > 0.0 and V * v > 0.0):
             return 0.0, 0.0, 0.0
     r, Rp, Mt = root_radius(0.0, V, law)
-    theta = 0.9
+    theta = 0.6
     for _ in range(100):
         tail = theta ** (K + 1) / (1.0 - theta) * MARGIN
         if tail <= TOL_ROOT and Mt * r * tail <= TOL_ROOT * (theta * r) ** q / (1.5 * abs(V)):

@@ -82,8 +82,6 @@ DEGREE_SHORT = 12
 #: relative margin on computed bounds (covers their own rounding).
 MARGIN = 1.0 + 1e-12
 
-#: 1/k (INV[0] unused)
-INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
 
 # layout of the law array (see law_array)
 (L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B,
@@ -93,6 +91,8 @@ LAW_SIZE = 12
 ROOT_DEGREE = 64
 #: the root variable is used for a, b in (1/ROOT_Q_MAX) Z (dyadic, so q a, q b are exact in float64).
 ROOT_Q_MAX = 8
+#: 1/k (INV[0] unused)
+INV = np.array([0.0] + [1.0 / k for k in range(1, max(DEGREE_LONG, ROOT_DEGREE) + 3)])
 
 
 def root_denominator(a: float, b: float) -> int:
@@ -372,8 +372,13 @@ def root_majorant(sig0, p0, Rs, law):
 
 @njit(cache=True)
 def root_radius(sig0, p0, law):
-    """(r, Rp, Mt) of :func:`root_majorant` with Rs balanced (Rs = Rp / Mp within 1%): the largest r."""
-    Rs = max(sig0, 1.0)
+    """(r, Rp, Mt) of :func:`root_majorant` with Rs balanced (Rs = Rp / Mp within 1%): the largest r.
+
+    Bisection in log Rs from the balance of the restoring term alone at sig0 = 0,
+    Rs^(n_a+1) = p0^2 / (4 q rho).
+    """
+    q, na, _ = root_exponents(law)
+    Rs = max(sig0, (p0 * p0 / (4.0 * q * law[L_RHO])) ** (1.0 / (na + 1.0)))
     lo, hi = 0.0, math.inf
     for _ in range(200):
         r, Rp, Mt = root_majorant(sig0, p0, Rs, law)
@@ -383,7 +388,7 @@ def root_radius(sig0, p0, law):
             hi = Rs
         if hi <= 1.01 * lo:
             break
-        Rs = 2.0 * Rs if hi == math.inf else (math.sqrt(lo * hi) if lo > 0.0 else 0.5 * Rs)
+        Rs = 1.25 * Rs if hi == math.inf else (math.sqrt(lo * hi) if lo > 0.0 else 0.8 * Rs)
     return root_majorant(sig0, p0, lo, law) if lo > 0.0 else root_majorant(sig0, p0, Rs, law)
 
 
@@ -415,10 +420,7 @@ def root_coefficients(sig0, p0, side, law, H, K, Pc, Tc, R, S):
     R[0] = 1.0 / p0
     for k in range(K):
         if k >= 1:
-            acc = 0.0
-            for j in range(1, k + 1):
-                acc += Pc[j] * R[k - j]
-            R[k] = -R[0] * acc
+            R[k] = -R[0] * _convolution(Pc, R, 1, k, k)
         fa = 0.0
         for j in range(0, min(k, na) + 1):
             fa += S[0, j] * R[k - j]
@@ -426,8 +428,9 @@ def root_coefficients(sig0, p0, side, law, H, K, Pc, Tc, R, S):
         for j in range(0, min(k, nt) + 1):
             ft += S[2, j] * R[k - j]
         fb = S[1, k] if k <= nb and k < m else 0.0
-        Pc[k + 1] = -q * H * (rho * fa + mu2 * fb) / (k + 1.0)
-        Tc[k + 1] = side * q * H * ft / (k + 1.0)
+        step = q * H * INV[k + 1]
+        Pc[k + 1] = -step * (rho * fa + mu2 * fb)
+        Tc[k + 1] = side * step * ft
 
 
 @njit(cache=True)
