@@ -308,6 +308,18 @@ def _wide_window_ok(delta, v, Es, law):
 
 
 @njit(cache=True)
+def _near_crossing(w0, v, pw0, law):
+    """A necessary condition (no powers) for either window at |xi0| = w0, pw0 = w0^(a+1).
+
+    The window of half-width delta is entered at w0 <= delta/2, delta <= max((2^-57 v^2 / rho)^(1/(a+2)),
+    16 eps |xi_eq|), so (2 w0)^(a+2) >= 4 w0 pw0 gives 4 rho w0 pw0 <= 2^-57 v^2 or w0 <= 8 eps |xi_eq|;
+    the first-order window at delta = 2 w0 needs E0 <= delta/100 (:func:`_wide_window_ok`), E0 >=
+    2 rho delta^(a+3) / v^2, i.e. 800 rho w0 pw0 <= v^2, which the first case implies.
+    """
+    return 800.0 * law[L_RHO] * w0 * pw0 <= v * v or w0 <= 8.0 * EPS * abs(law[L_XI_EQ])
+
+
+@njit(cache=True)
 def _wide_window_change(T, xi0, v, law):
     """(e, dv): the first-order change of xi beyond xi0 + v T, and of xi', over a window of length T.
 
@@ -342,12 +354,12 @@ def _root_crossing(xi0, v, pw0, law):
     Incoming series of eq. (R) around sigma0 = |xi0|^(1/q) evaluated at sigma = 0 (the crossing:
     time t_in, xi' = V), outgoing series around 0 on the other side evaluated at sigma1; T = t_in +
     t_out, d = xi1 - xi0 and dv = the change of xi' (summed from the series' own increments, so
-    no ulp of xi' is lost).  T = 0 when a tail bound or the fast-crossing pre-check
-    (2^n_a 4 q rho |xi0|^(a+2) / THETA_ROOT <= v^2, necessary for sigma0 <= THETA_ROOT r) fails;
-    pw0 = |xi0|^(a+1).
+    no ulp of xi' is lost).  T = 0 when a tail bound or the fast-crossing pre-check fails:
+    4 q rho |xi0|^(a+2) (1 + 1/THETA_ROOT)^n_a / THETA_ROOT <= v^2 is necessary for sigma0 <= THETA_ROOT r
+    (r <= Rp / Mp, Rs >= sigma0 / THETA_ROOT in :func:`bounce.power_series.root_majorant`); pw0 = |xi0|^(a+1).
     """
     q, na, nb = root_exponents(law)
-    if not 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * 2.0**na <= THETA_ROOT * v * v:
+    if not 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * (1.0 + 1.0 / THETA_ROOT) ** na <= THETA_ROOT * v * v:
         return 0.0, 0.0, 0.0
     K = ROOT_DEGREE
     Pc = np.empty(K + 1)
@@ -506,8 +518,10 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 v, vl = compensated_add(v, vl, dv)
                 t_hi, t_lo = compensated_add(t_hi, t_lo, T)
                 continue
-        delta = crossing_halfwidth(v, Es, law) if singular else 0.0
-        if (singular and law[L_ANALYTIC_B] == 0.0 and w0 > 0.5 * delta and not (x == 0.0 and u == 0.0)
+        # both windows need 800 rho |xi0|^(a+2) <= v^2 or |xi0| <= 8 eps |xi_eq| (_near_crossing)
+        near = singular and _near_crossing(w0, v, p0, law)
+        delta = crossing_halfwidth(v, Es, law) if near else 0.0
+        if (near and law[L_ANALYTIC_B] == 0.0 and w0 > 0.5 * delta and not (x == 0.0 and u == 0.0)
                 and _wide_window_ok(2.0 * w0, v, Es, law)):
             wide = 2.0 * w0
             for _ in range(64):
@@ -524,7 +538,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 v, vl = compensated_add(v, vl, dv)
                 t_hi, t_lo = compensated_add(t_hi, t_lo, T)
                 continue
-        if singular and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
+        if near and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
             d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
             if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
                 # linear damping solved exactly in the window: xi' = v exp(-2 mu s)
