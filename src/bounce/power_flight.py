@@ -113,6 +113,7 @@ from .power_series import (
     ROOT_DEGREE,
     L_ANALYTIC_A,
     L_ROOT_Q,
+    integer_power,
     L_ANALYTIC_B,
     cauchy_radius,
     curvature,
@@ -359,7 +360,7 @@ def _root_crossing(xi0, v, pw0, law):
     (r <= Rp / Mp, Rs >= sigma0 / THETA_ROOT in :func:`bounce.power_series.root_majorant`); pw0 = |xi0|^(a+1).
     """
     q, na, nb = root_exponents(law)
-    if not 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * (1.0 + 1.0 / THETA_ROOT) ** na <= THETA_ROOT * v * v:
+    if not 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * integer_power(1.0 + 1.0 / THETA_ROOT, na) <= THETA_ROOT * v * v:
         return 0.0, 0.0, 0.0
     K = ROOT_DEGREE
     Pc = np.empty(K + 1)

@@ -354,6 +354,18 @@ def root_exponents(law):
 
 
 @njit(cache=True)
+def integer_power(x, n):
+    """x^n for an integer n >= 0 by repeated squaring (the root variable's exponents are integers)."""
+    result = 1.0
+    while n > 0:
+        if n & 1:
+            result *= x
+        x *= x
+        n >>= 1
+    return result
+
+
+@njit(cache=True)
 def root_majorant(sig0, p0, Rs, law):
     """(r, Rp, Mt) of the majorant argument for the root-variable series (module docstring).
 
@@ -365,8 +377,8 @@ def root_majorant(sig0, p0, Rs, law):
     ap = abs(p0)
     Rp = 0.5 * ap
     S = sig0 + Rs
-    Mp = q * (law[L_RHO] * S**na / (ap - Rp) + 2.0 * law[L_MU] * S**nb) * MARGIN
-    Mt = q * S ** (q - 1.0) / (ap - Rp) * MARGIN
+    Mp = q * (law[L_RHO] * integer_power(S, na) / (ap - Rp) + 2.0 * law[L_MU] * integer_power(S, nb)) * MARGIN
+    Mt = q * integer_power(S, int(q) - 1) / (ap - Rp) * MARGIN
     return min(Rs, Rp / Mp) / MARGIN, Rp, Mt
 
 
