@@ -78,8 +78,11 @@ analytic through sigma = 0): the incoming series around sigma0 = |xi0|^(1/q) eva
 sigma = 0 gives the crossing time and V = xi' there, the outgoing series around 0 on the other
 side with xi'(0) = V runs to sigma1 = theta r.  Each is truncated at ROOT_DEGREE with its rigorous
 tail below TOL_ROOT = 2^-60 of |xi'| (xi') and of a lower bound |xi1 - xi0| / (1.5 |xi'|) of its
-duration (t): exact to rounding like the windows above, and for Hertz at |v| ~ 0.03 it spans
-|xi| <~ 1e-2 on both sides (~40 time-series steps and a window).  Approximations: sigma0 is the
+duration (t): exact to rounding like the windows above.  For Hertz (mu = 0.05) it spans
+|xi| <= 3e-3 before and 6e-3 after the crossing at |v| = 0.03 (2e-2 and 4e-2 at |v| = 0.3); on the
+drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200 series steps
+per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
+right expansion).  Approximations: sigma0 is the
 rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
 sigma1 is xi1 = -s sigma1^q rounded.  The crossing is not taken when it may contain the floor
 contact (safe step of the flight's curvature bound) or t_limit, nor when a tail bound fails
