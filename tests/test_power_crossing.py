@@ -41,7 +41,7 @@ def test_root_crossing_matches_reference(spring, case):
     xi0, v = CASES[case]
     law = law_array(spring.rho, spring.a, spring.b, MU, GAMMA)
     assert law[L_ROOT_Q] > 0
-    T, d, dv = _root_crossing(xi0, v, abs(xi0) ** (spring.a + 1.0), law)
+    T, d, dv = _root_crossing(xi0, v, abs(xi0) ** (spring.a + 1.0), law, np.inf)
     assert T > 0.0, "a fast crossing must be taken"
     xi1 = xi0 + d
     assert xi1 * v > 0.0 and abs(xi1) > 0.5 * abs(xi0)  # through 0, well beyond it (the point of the step)
@@ -59,7 +59,7 @@ def test_slow_crossing_is_left_to_the_windows(spring):
     law = law_array(spring.rho, spring.a, spring.b, MU, GAMMA)
     xi0 = -1e-2
     v = 0.3 * (abs(xi0) ** (spring.a + 2.0)) ** 0.5
-    assert _root_crossing(xi0, v, abs(xi0) ** (spring.a + 1.0), law)[0] == 0.0
+    assert _root_crossing(xi0, v, abs(xi0) ** (spring.a + 1.0), law, np.inf)[0] == 0.0
 
 
 @pytest.mark.parametrize("spring", [PowerSpring(1.0, 0.5, 0.5), PowerSpring(0.5, 0.25, 1.0), PowerSpring(1.0, 0.5, 0.3)],
@@ -87,3 +87,16 @@ def test_flight_through_crossings_matches_reference(spring, amplitude):
     with mp.workdps(60):
         eta_ref = float(ref["xi"] - mpf(xi_eq))
     assert abs(tr.eta[0] - eta_ref) <= rel * (abs(eta_ref) + abs(eta_ref - eta)), (tr.eta[0], eta_ref)
+
+
+def test_root_crossing_underflow_and_deadline():
+    """|xi'| ~ 1e-50 at xi = 0 (the majorant radius underflows: refused, found by hypothesis in
+    test_power_core); a deadline t_max before xi = 0 refuses, one after it shortens the outgoing part."""
+    law = law_array(2.0, 1.0, 0.0, 0.5, 0.0078125)
+    assert _root_crossing(0.0, 5.929327452028284e-50, 0.0, law, np.inf)[0] >= 0.0
+    hertz = law_array(1.0, 0.5, 0.5, MU, GAMMA)
+    T, d, _ = _root_crossing(-1e-3, 0.3, 1e-3**1.5, hertz, np.inf)
+    assert T > 1e-3 / 0.3
+    assert _root_crossing(-1e-3, 0.3, 1e-3**1.5, hertz, 0.5e-3 / 0.3)[0] == 0.0
+    T2, d2, _ = _root_crossing(-1e-3, 0.3, 1e-3**1.5, hertz, 0.5 * (T + 1e-3 / 0.3))
+    assert 1e-3 / 0.3 < T2 < 0.5 * (T + 1e-3 / 0.3) and 0.0 < -1e-3 + d2 < -1e-3 + d

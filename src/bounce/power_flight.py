@@ -84,9 +84,10 @@ drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200
 per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
 right expansion).  Approximations: sigma0 is the
 rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
-sigma1 is xi1 = -s sigma1^q rounded.  The crossing is not taken when it may contain the floor
-contact (safe step of the flight's curvature bound) or t_limit, nor when a tail bound fails
-(slow crossings: then the windows above).
+sigma1 is xi1 = -s sigma1^q rounded.  The step ends before the floor can be reached (the safe
+step of the flight's curvature bound) and before t_limit: sigma1 is taken smaller where needed,
+and the crossing is not taken when xi = 0 itself comes too late, nor when a tail bound fails
+(slow crossings): then the windows above.
 
 Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
@@ -352,8 +353,11 @@ def _wide_window_change(T, xi0, v, law):
 
 
 @njit(cache=True)
-def _root_crossing(xi0, v, pw0, law):
+def _root_crossing(xi0, v, pw0, law, t_max):
     """(T, d, dv): the crossing of xi = 0 from (xi0, v), xi0 v <= 0, in the root variable (module docstring).
+
+    T < t_max (the flight's safe step or t_limit): the outgoing series stops at a smaller sigma1
+    where needed (its tails only shrink), T = 0 if the crossing itself comes too late.
 
     Incoming series of eq. (R) around sigma0 = |xi0|^(1/q) evaluated at sigma = 0 (the crossing:
     time t_in, xi' = V), outgoing series around 0 on the other side evaluated at sigma1; T = t_in +
@@ -363,7 +367,7 @@ def _root_crossing(xi0, v, pw0, law):
     (r <= Rp / Mp, Rs >= sigma0 / THETA_ROOT in :func:`bounce.power_series.root_majorant`); pw0 = |xi0|^(a+1).
     """
     q, na, nb = root_exponents(law)
-    if not 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * integer_power(1.0 + 1.0 / THETA_ROOT, na) <= THETA_ROOT * v * v:
+    if not (t_max > 0.0 and 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * integer_power(1.0 + 1.0 / THETA_ROOT, na) <= THETA_ROOT * v * v):
         return 0.0, 0.0, 0.0
     K = ROOT_DEGREE
     Pc = np.empty(K + 1)
@@ -376,6 +380,8 @@ def _root_crossing(xi0, v, pw0, law):
     if w0 > 0.0:
         sig0 = w0 ** (1.0 / q)
         r, Rp, Mt = root_radius(sig0, v, law)
+        if not r > 0.0:  # underflow (|v| ~ 1e-50)
+            return 0.0, 0.0, 0.0
         theta = sig0 / r
         tail = theta ** (K + 1) / (1.0 - theta) * MARGIN if theta < 1.0 else math.inf
         if not (tail <= TOL_ROOT and Mt * r * tail <= TOL_ROOT * w0 / (1.5 * abs(v))):
@@ -385,9 +391,11 @@ def _root_crossing(xi0, v, pw0, law):
         dv_in = root_series(-theta, K, Pc)
         t_in = root_series(-theta, K, Tc)
         V = v + dv_in
-        if not (t_in > 0.0 and V * v > 0.0):
+        if not (0.0 < t_in < t_max and V * v > 0.0):
             return 0.0, 0.0, 0.0
     r, Rp, Mt = root_radius(0.0, V, law)
+    if not r > 0.0:
+        return 0.0, 0.0, 0.0
     theta = 0.6
     for _ in range(100):
         tail = theta ** (K + 1) / (1.0 - theta) * MARGIN
@@ -398,8 +406,16 @@ def _root_crossing(xi0, v, pw0, law):
         return 0.0, 0.0, 0.0
     root_coefficients(0.0, V, side, law, r, K, Pc, Tc, R, S)
     Pc[0] = 0.0
+    for _ in range(16):  # t_out ~ sigma1^q / |V|: shrink sigma1 until the crossing ends before t_max
+        t_out = root_series(theta, K, Tc)
+        if t_in + t_out < t_max:
+            break
+        if not t_out > 0.0:
+            return 0.0, 0.0, 0.0
+        theta *= 0.9 * ((t_max - t_in) / t_out) ** (1.0 / q)
+    else:
+        return 0.0, 0.0, 0.0
     dv_out = root_series(theta, K, Pc)
-    t_out = root_series(theta, K, Tc)
     xi1 = side * (theta * r) ** q
     return t_in + t_out, xi1 - xi0, dv_in + dv_out
 
@@ -514,8 +530,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
         if rooted and v != 0.0 and xi0 * v <= 0.0 and not (x == 0.0 and u == 0.0):
-            T, d, dv = _root_crossing(xi0, v, p0, law)
-            if T > 0.0 and t + T < t_limit and safe_step(x + xl, u + ul, B) > T:
+            T, d, dv = _root_crossing(xi0, v, p0, law, min(t_limit - t, safe_step(x + xl, u + ul, B)))
+            if T > 0.0:
                 x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
                 u, ul = compensated_add(u, ul, -gamma * T - dv)
                 eta, el = compensated_add(eta, el, d + vl * T)
