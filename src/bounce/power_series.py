@@ -266,11 +266,18 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
     H2 = H * H
     Q[0] = q0
     half = b == 0.5
+    split = K > DEGREE_SHORT  # the hot path's low degrees: one sum (the split's setup costs more there)
     inv_2q0 = 0.5 / q0
     for k in range(0, K - 1):
         if k >= 1:
             if half:
-                s = 2.0 * _convolution(Q, Q, 1, (k + 1) // 2 - 1, k)
+                if split:
+                    s = _convolution(Q, Q, 1, (k + 1) // 2 - 1, k)
+                else:
+                    s = 0.0
+                    for j in range(1, (k + 1) // 2):
+                        s += Q[j] * Q[k - j]
+                s *= 2.0
                 if k % 2 == 0:
                     s += Q[k // 2] * Q[k // 2]
                 Q[k] = (sigma * X[k] - s) * inv_2q0
@@ -280,7 +287,12 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
                     s += (b * j - (k - j)) * X[j] * Q[k - j]
                 Q[k] = s * inv_xi0 * INV[k]
             Y[k] = H2 * r * X[k] + 2.0 * m * H * (k + 1) * X[k + 1]
-            acc = _convolution(Y, Q, 0, k, k)
+            if split:
+                acc = _convolution(Y, Q, 0, k, k)
+            else:
+                acc = 0.0
+                for j in range(0, k + 1):
+                    acc += Y[j] * Q[k - j]
         else:
             Y[0] = H2 * r * X[0] + 2.0 * m * H * X[1]
             acc = H2 * f0 + 2.0 * m * H * X[1] * q0
