@@ -80,7 +80,7 @@ def test_drop_transient_flights_match_reference(xi0):
                                     PowerSpring(2.0, 0.25, 0.25)], ids=lambda s: f"rho{s.rho}_a{s.a}_b{s.b}")
 def test_flight_through_many_crossings_matches_reference(spring):
     """A flight of ~15 time units whose spring crosses its rest length xi = 0 3-5 times (the
-    first-order crossing windows of power_flight for b > 0, b <= 1 and b > 1), to 1e-14."""
+    crossings of power_flight for b > 0, b <= 1 and b > 1: root variable, windows as fallback), to 1e-14."""
     gamma, mu = 0.05, 0.05
     x, u, a = 0.0, 0.1, 0.3
     xi_eq = float(law_array(spring.rho, spring.a, spring.b, mu, gamma)[L_XI_EQ])

@@ -70,6 +70,25 @@ force, Hoelder for |xi|^b, b <= 1, integrated over the sweep of the line through
 for Hertz at |v| ~ 0.3, which takes ~6 decades of geometric series steps off every crossing.
 A first-order window that may contain the floor contact or t_limit is not taken (series steps).
 
+Crossings in the root variable (a, b in (1/q) Z, q in {1, 2, 4, 8}: Hertz, q = 2; tried
+first, the windows above are the fallback).  When xi moves towards 0 (or starts at 0) and
+the crossing is fast (:func:`_root_crossing`), the crossing is one step of the series of eq. (R)
+of :mod:`bounce.power_series` (xi = s sigma^q, sigma the independent variable, xi' and t
+analytic through sigma = 0): the incoming series around sigma0 = |xi0|^(1/q) evaluated at
+sigma = 0 gives the crossing time and V = xi' there, the outgoing series around 0 on the other
+side with xi'(0) = V runs to sigma1 = theta r.  Each is truncated at ROOT_DEGREE with its rigorous
+tail below TOL_ROOT = 2^-60 of |xi'| (xi') and of a lower bound |xi1 - xi0| / (1.5 |xi'|) of its
+duration (t): exact to rounding like the windows above.  For Hertz (mu = 0.05) it spans
+|xi| <= 3e-3 before and 6e-3 after the crossing at |v| = 0.03 (2e-2 and 4e-2 at |v| = 0.3); on the
+drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200 series steps
+per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
+right expansion).  Approximations: sigma0 is the
+rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
+sigma1 is xi1 = -s sigma1^q rounded.  The step ends before the floor can be reached (the safe
+step of the flight's curvature bound) and before t_limit: sigma1 is taken smaller where needed,
+and the crossing is not taken when xi = 0 itself comes too late, nor when a tail bound fails
+(slow crossings): then the windows above.
+
 Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
@@ -99,6 +118,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .events import compensated_add
@@ -113,13 +133,20 @@ from .power_series import (
     L_RHO,
     L_XI_EQ,
     MARGIN,
+    ROOT_DEGREE,
     L_ANALYTIC_A,
+    L_ROOT_Q,
+    integer_power,
     L_ANALYTIC_B,
     cauchy_radius,
     curvature,
     displacement,
     powers_at,
     restoring_excess,
+    root_coefficients,
+    root_radius,
+    root_series,
+    root_exponents,
     tail_bounds,
     taylor_coefficients,
 )
@@ -135,6 +162,10 @@ TOL_LONG = 2.0**-64
 #: ~1e2 per crossing of xi = 0 (a long flight of a weakly damped spring crosses it thousands of
 #: times); a step that does not advance time (or a NaN state) is FAILED.
 MAX_EVALS = 400_000
+#: truncation target of a crossing in the root variable (relative to xi' and to the crossing's time).
+TOL_ROOT = 2.0**-60
+#: largest theta = |sigma - sigma0| / r of a root-variable series (ROOT_DEGREE 64: theta^65 / (1 - theta) ~ 2^-60).
+THETA_ROOT = 0.53
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
 #: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
@@ -301,6 +332,18 @@ def _wide_window_ok(delta, v, Es, law):
 
 
 @njit(cache=True)
+def _near_crossing(w0, v, pw0, law):
+    """A necessary condition (no powers) for either window at |xi0| = w0, pw0 = w0^(a+1).
+
+    The window of half-width delta is entered at w0 <= delta/2, delta <= max((2^-57 v^2 / rho)^(1/(a+2)),
+    16 eps |xi_eq|), so (2 w0)^(a+2) >= 4 w0 pw0 gives 4 rho w0 pw0 <= 2^-57 v^2 or w0 <= 8 eps |xi_eq|;
+    the first-order window at delta = 2 w0 needs E0 <= delta/100 (:func:`_wide_window_ok`), E0 >=
+    2 rho delta^(a+3) / v^2, i.e. 800 rho w0 pw0 <= v^2, which the first case implies.
+    """
+    return 800.0 * law[L_RHO] * w0 * pw0 <= v * v or w0 <= 8.0 * EPS * abs(law[L_XI_EQ])
+
+
+@njit(cache=True)
 def _wide_window_change(T, xi0, v, law):
     """(e, dv): the first-order change of xi beyond xi0 + v T, and of xi', over a window of length T.
 
@@ -326,6 +369,74 @@ def _wide_window_change(T, xi0, v, law):
     dv = -(rho * (R1_T - R1_0) / v + 2.0 * mu * (G1_T - G1_0))
     e = -(rho * ((R2_T - R2_0) - vT * R1_0) / (v * v) + 2.0 * mu * ((G2_T - G2_0) - vT * G1_0) / v)
     return e, dv
+
+
+@njit(cache=True)
+def _root_crossing(xi0, v, pw0, law, t_max):
+    """(T, d, dv): the crossing of xi = 0 from (xi0, v), xi0 v <= 0, in the root variable (module docstring).
+
+    T < t_max (the flight's safe step or t_limit): the outgoing series stops at a smaller sigma1
+    where needed (its tails only shrink), T = 0 if the crossing itself comes too late.
+
+    Incoming series of eq. (R) around sigma0 = |xi0|^(1/q) evaluated at sigma = 0 (the crossing:
+    time t_in, xi' = V), outgoing series around 0 on the other side evaluated at sigma1; T = t_in +
+    t_out, d = xi1 - xi0 and dv = the change of xi' (summed from the series' own increments, so
+    no ulp of xi' is lost).  T = 0 when a tail bound or the fast-crossing pre-check fails:
+    4 q rho |xi0|^(a+2) (1 + 1/THETA_ROOT)^n_a / THETA_ROOT <= v^2 is necessary for sigma0 <= THETA_ROOT r
+    (r <= Rp / Mp, Rs >= sigma0 / THETA_ROOT in :func:`bounce.power_series.root_majorant`); pw0 = |xi0|^(a+1).
+    """
+    q, na, nb = root_exponents(law)
+    if not (t_max > 0.0 and 4.0 * q * law[L_RHO] * abs(xi0) * pw0 * integer_power(1.0 + 1.0 / THETA_ROOT, na) <= THETA_ROOT * v * v):
+        return 0.0, 0.0, 0.0
+    K = ROOT_DEGREE
+    Pc = np.empty(K + 1)
+    Tc = np.empty(K + 1)
+    R = np.empty(K + 1)
+    S = np.zeros((3, max(na, nb, int(q)) + 1))
+    w0 = abs(xi0)
+    t_in, dv_in, V = 0.0, 0.0, v
+    side = 1.0 if v > 0.0 else -1.0  # the outgoing side
+    if w0 > 0.0:
+        sig0 = w0 ** (1.0 / q)
+        r, Rp, Mt = root_radius(sig0, v, law)
+        if not r > 0.0:  # underflow (|v| ~ 1e-50)
+            return 0.0, 0.0, 0.0
+        theta = sig0 / r
+        tail = theta ** (K + 1) / (1.0 - theta) * MARGIN if theta < 1.0 else math.inf
+        if not (tail <= TOL_ROOT and Mt * r * tail <= TOL_ROOT * w0 / (1.5 * abs(v))):
+            return 0.0, 0.0, 0.0
+        root_coefficients(sig0, v, -side, law, r, K, Pc, Tc, R, S)
+        Pc[0] = 0.0
+        dv_in = root_series(-theta, K, Pc)
+        t_in = root_series(-theta, K, Tc)
+        V = v + dv_in
+        if not (0.0 < t_in < t_max and V * v > 0.0):
+            return 0.0, 0.0, 0.0
+    r, Rp, Mt = root_radius(0.0, V, law)
+    if not r > 0.0:
+        return 0.0, 0.0, 0.0
+    theta = 0.6
+    for _ in range(100):
+        tail = theta ** (K + 1) / (1.0 - theta) * MARGIN
+        if tail <= TOL_ROOT and Mt * r * tail <= TOL_ROOT * (theta * r) ** q / (1.5 * abs(V)):
+            break
+        theta *= 0.97
+    else:
+        return 0.0, 0.0, 0.0
+    root_coefficients(0.0, V, side, law, r, K, Pc, Tc, R, S)
+    Pc[0] = 0.0
+    for _ in range(16):  # t_out ~ sigma1^q / |V|: shrink sigma1 until the crossing ends before t_max
+        t_out = root_series(theta, K, Tc)
+        if t_in + t_out < t_max:
+            break
+        if not t_out > 0.0:
+            return 0.0, 0.0, 0.0
+        theta *= 0.9 * ((t_max - t_in) / t_out) ** (1.0 / q)
+    else:
+        return 0.0, 0.0, 0.0
+    dv_out = root_series(theta, K, Pc)
+    xi1 = side * (theta * r) ** q
+    return t_in + t_out, xi1 - xi0, dv_in + dv_out
 
 
 @njit(cache=True)
@@ -414,6 +525,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
     mu = law[L_MU]
     xi_eq = law[L_XI_EQ]
     singular = not (law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0)
+    rooted = singular and law[L_ROOT_Q] > 0.0
     start = (x, u, v, eta)
     K = DEGREE_LONG
     t_hi, t_lo = 0.0, 0.0
@@ -443,8 +555,19 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 return HORIZON, t_limit, u - gamma * s, x + (u * s - 0.5 * gamma * s * s), eta + el, v + vl, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, s)
             return FOUND, t_hi + t_lo, -root, x + abs(u) * s + 0.5 * gamma * s * s, eta + el, v + vl, -gamma, 0.0
-        delta = crossing_halfwidth(v, Es, law) if singular else 0.0
-        if (singular and law[L_ANALYTIC_B] == 0.0 and w0 > 0.5 * delta and not (x == 0.0 and u == 0.0)
+        if rooted and v != 0.0 and xi0 * v <= 0.0 and not (x == 0.0 and u == 0.0):
+            T, d, dv = _root_crossing(xi0, v, p0, law, min(t_limit - t, safe_step(x + xl, u + ul, B)))
+            if T > 0.0:
+                x, xl = compensated_add(x, xl, (u * T - 0.5 * gamma * T * T) + ((v * T - d) + ul * T))
+                u, ul = compensated_add(u, ul, -gamma * T - dv)
+                eta, el = compensated_add(eta, el, d + vl * T)
+                v, vl = compensated_add(v, vl, dv)
+                t_hi, t_lo = compensated_add(t_hi, t_lo, T)
+                continue
+        # both windows need 800 rho |xi0|^(a+2) <= v^2 or |xi0| <= 8 eps |xi_eq| (_near_crossing)
+        near = singular and _near_crossing(w0, v, p0, law)
+        delta = crossing_halfwidth(v, Es, law) if near else 0.0
+        if (near and law[L_ANALYTIC_B] == 0.0 and w0 > 0.5 * delta and not (x == 0.0 and u == 0.0)
                 and _wide_window_ok(2.0 * w0, v, Es, law)):
             wide = 2.0 * w0
             for _ in range(64):
@@ -461,7 +584,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 v, vl = compensated_add(v, vl, dv)
                 t_hi, t_lo = compensated_add(t_hi, t_lo, T)
                 continue
-        if singular and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
+        if near and w0 <= 0.5 * delta:  # enter at delta/2, leave at delta: the next step is a series step
             d = (delta if v > 0.0 else -delta) - xi0  # the window's change of xi
             if law[L_ANALYTIC_B] == 1.0 and mu > 0.0:
                 # linear damping solved exactly in the window: xi' = v exp(-2 mu s)

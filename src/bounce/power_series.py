@@ -43,6 +43,25 @@ series of xi' (degree K - 1) by at most Rp theta^K / (1 - theta).  These bounds
 are what :mod:`bounce.power_flight` compares with the rounding level of x and x'.
 The coefficients themselves carry the usual relative rounding of a recurrence
 (a few ulps times the degree); they are not part of the bound.
+
+The root variable (crossings of xi = 0, :func:`root_coefficients`).  For a, b in (1/q) Z with
+q in {1, 2, 4, 8} (Hertz: q = 2) write, on one side of xi = 0 with sign s, xi = s sigma^q,
+sigma >= 0, and take sigma as the independent variable: with p = xi' and the time t,
+
+    dp/dsigma = -q (r sigma^n_a / p + 2 m s sigma^n_b),   dt/dsigma = s q sigma^(q-1) / p,     (R)
+
+n_a = q (a+2) - 1, n_b = q (b+1) - 1 (eq. ``eq-motion-nonlin-psi-xi`` times dt/dsigma): the
+right sides are polynomials in sigma and analytic in p != 0, so p and t are analytic through
+sigma = 0 (the non-analytic point of the time series) and their radius in sigma is set by
+p -> 0 (the turning point), not by |xi0|.  Coefficients around sigma0: sigma^n in powers of
+sigma - sigma0 by the binomial theorem, 1/p by the reciprocal recurrence
+R_k = -(1/p_0) sum_{j=1..k} p_j R_{k-j}, then Cauchy sums with the (short) polynomials.
+Rigorous tail: on the polydisc |sigma - sigma0| <= Rs, |p - p0| <= Rp = |p0|/2 the right sides
+are bounded by Mp = q (r S^n_a / (|p0| - Rp) + 2 m S^n_b) and Mt = q S^(q-1) / (|p0| - Rp),
+S = sigma0 + Rs (:func:`root_majorant`), so p, t are holomorphic on |sigma - sigma0| < r =
+min(Rs, Rp/Mp) with |p - p0| <= Rp, |t - t0| <= Mt r there; Cauchy's estimate bounds the series
+truncated after degree K on |sigma - sigma0| <= theta r by Rp theta^(K+1)/(1 - theta) (p) and
+Mt r theta^(K+1)/(1 - theta) (t).  Rs is chosen to maximise r (:func:`root_radius`).
 """
 
 from __future__ import annotations
@@ -63,13 +82,25 @@ DEGREE_SHORT = 12
 #: relative margin on computed bounds (covers their own rounding).
 MARGIN = 1.0 + 1e-12
 
-#: 1/k (INV[0] unused)
-INV = np.array([0.0] + [1.0 / k for k in range(1, DEGREE_LONG + 3)])
 
 # layout of the law array (see law_array)
 (L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B,
- L_EQ_RESIDUAL) = range(11)
-LAW_SIZE = 11
+ L_EQ_RESIDUAL, L_ROOT_Q) = range(12)
+LAW_SIZE = 12
+#: degree of the series in the root variable sigma = |xi|^(1/q) across xi = 0 (:func:`root_coefficients`).
+ROOT_DEGREE = 64
+#: the root variable is used for a, b in (1/ROOT_Q_MAX) Z (dyadic, so q a, q b are exact in float64).
+ROOT_Q_MAX = 8
+#: 1/k (INV[0] unused)
+INV = np.array([0.0] + [1.0 / k for k in range(1, max(DEGREE_LONG, ROOT_DEGREE) + 3)])
+
+
+def root_denominator(a: float, b: float) -> int:
+    """q in (1, 2, 4, 8): the least with q a and q b integers, 0 if none (:func:`root_coefficients`)."""
+    for q in (1, 2, 4, ROOT_Q_MAX):
+        if float(q * a).is_integer() and float(q * b).is_integer():
+            return q
+    return 0
 
 
 def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
@@ -89,7 +120,7 @@ def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
         residual = float(Decimal(gamma) - Decimal(rho) * (Decimal(a + 1.0) * w.ln()).exp())
     return np.array([
         rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
-        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual,
+        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual, float(root_denominator(a, b)),
     ])
 
 
@@ -169,7 +200,7 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[1] = v0 * H
     H2 = H * H
     if ap1 == b + 1.0 and not lin_b:
-        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q)
+        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
         return
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
@@ -199,30 +230,53 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
         X[k + 2] = -(H2 * force + 2.0 * m * H * damp) * INV[k + 1] * INV[k + 2]
 
 
+@njit(cache=True, inline="always")
+def _convolution(A, B, lo, hi, k):
+    """sum_{j=lo..hi} A[j] B[k-j] in four interleaved partial sums (the recurrences' Cauchy sums are
+    latency-bound with one; same value up to the rounding of the sum's order)."""
+    s0 = s1 = s2 = s3 = 0.0
+    j = lo
+    while j + 3 <= hi:
+        s0 += A[j] * B[k - j]
+        s1 += A[j + 1] * B[k - j - 1]
+        s2 += A[j + 2] * B[k - j - 2]
+        s3 += A[j + 3] * B[k - j - 3]
+        j += 4
+    while j <= hi:
+        s0 += A[j] * B[k - j]
+        j += 1
+    return (s0 + s1) + (s2 + s3)
+
+
 @njit(cache=True)
-def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
+def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
     """:func:`taylor_coefficients` for a = b > 0 (Hertz among them): one power, one product.
 
     Then r xi |xi|^a + 2 m xi' |xi|^b = (r xi + 2 m xi') Q with Q = |xi|^b, so for k >= 1
 
-        (k+1)(k+2) X_{k+2} = -(1/H) sum_{j=0..k} (H^2 r X_j + 2 m H (j+1) X_{j+1}) Q_{k-j}
+        (k+1)(k+2) X_{k+2} = -(1/H) sum_{j=0..k} Y_j Q_{k-j},   Y_j = H^2 r X_j + 2 m H (j+1) X_{j+1}
 
     (X_k in units of H; for k = 0 the restoring part is f0, as in the general case), one
     Cauchy sum instead of a Miller recurrence for |xi|^(a+1) plus one for the damping.  For
     b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
     (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
-    Same coefficients up to the rounding of the sums (a few ulps times the degree).
+    Same coefficients up to the rounding of the sums (a few ulps times the degree).  Y is a
+    work array (length > K).
     """
     H2 = H * H
     Q[0] = q0
     half = b == 0.5
+    split = K > DEGREE_SHORT  # the hot path's low degrees: one sum (the split's setup costs more there)
     inv_2q0 = 0.5 / q0
     for k in range(0, K - 1):
         if k >= 1:
             if half:
-                s = 0.0
-                for j in range(1, (k + 1) // 2):
-                    s += Q[j] * Q[k - j]
+                if split:
+                    s = _convolution(Q, Q, 1, (k + 1) // 2 - 1, k)
+                else:
+                    s = 0.0
+                    for j in range(1, (k + 1) // 2):
+                        s += Q[j] * Q[k - j]
                 s *= 2.0
                 if k % 2 == 0:
                     s += Q[k // 2] * Q[k // 2]
@@ -232,10 +286,15 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q):
                 for j in range(1, k + 1):
                     s += (b * j - (k - j)) * X[j] * Q[k - j]
                 Q[k] = s * inv_xi0 * INV[k]
-            acc = 0.0
-            for j in range(0, k + 1):
-                acc += (H2 * r * X[j] + 2.0 * m * H * (j + 1) * X[j + 1]) * Q[k - j]
+            Y[k] = H2 * r * X[k] + 2.0 * m * H * (k + 1) * X[k + 1]
+            if split:
+                acc = _convolution(Y, Q, 0, k, k)
+            else:
+                acc = 0.0
+                for j in range(0, k + 1):
+                    acc += Y[j] * Q[k - j]
         else:
+            Y[0] = H2 * r * X[0] + 2.0 * m * H * X[1]
             acc = H2 * f0 + 2.0 * m * H * X[1] * q0
         X[k + 2] = -acc * INV[k + 1] * INV[k + 2]
 
@@ -297,3 +356,111 @@ def curvature(s, H, K, X):
     for k in range(K - 1, 2, -1):
         d3 = d3 * z + k * (k - 1) * (k - 2) * X[k]
     return d2 / (H * H), d3 / (H * H * H)
+
+
+@njit(cache=True)
+def root_exponents(law):
+    """(q, n_a, n_b) of the series in the root variable: n_a = q (a+2) - 1, n_b = q (b+1) - 1."""
+    q = law[L_ROOT_Q]
+    return q, int(round(q * (law[L_AP1] + 1.0))) - 1, int(round(q * (law[L_B] + 1.0))) - 1
+
+
+@njit(cache=True)
+def integer_power(x, n):
+    """x^n for an integer n >= 0 by repeated squaring (the root variable's exponents are integers)."""
+    result = 1.0
+    while n > 0:
+        if n & 1:
+            result *= x
+        x *= x
+        n >>= 1
+    return result
+
+
+@njit(cache=True)
+def root_majorant(sig0, p0, Rs, law):
+    """(r, Rp, Mt) of the majorant argument for the root-variable series (module docstring).
+
+    On |sigma - sig0| <= Rs, |p - p0| <= Rp = |p0|/2 the right sides of (R) are bounded by
+    Mp = q (rho S^n_a / (|p0| - Rp) + 2 mu S^n_b) and Mt = q S^(q-1) / (|p0| - Rp), S = sig0 + Rs;
+    within |sigma - sig0| < r = min(Rs, Rp / Mp): |p - p0| <= Rp and |t - t0| <= Mt |sigma - sig0|.
+    """
+    q, na, nb = root_exponents(law)
+    ap = abs(p0)
+    Rp = 0.5 * ap
+    S = sig0 + Rs
+    Mp = q * (law[L_RHO] * integer_power(S, na) / (ap - Rp) + 2.0 * law[L_MU] * integer_power(S, nb)) * MARGIN
+    Mt = q * integer_power(S, int(q) - 1) / (ap - Rp) * MARGIN
+    return min(Rs, Rp / Mp) / MARGIN, Rp, Mt
+
+
+@njit(cache=True)
+def root_radius(sig0, p0, law):
+    """(r, Rp, Mt) of :func:`root_majorant` with Rs balanced (Rs = Rp / Mp within 1%): the largest r.
+
+    Bisection in log Rs from the balance of the restoring term alone at sig0 = 0,
+    Rs^(n_a+1) = p0^2 / (4 q rho).
+    """
+    q, na, _ = root_exponents(law)
+    Rs = max(sig0, (p0 * p0 / (4.0 * q * law[L_RHO])) ** (1.0 / (na + 1.0)))
+    lo, hi = 0.0, math.inf
+    for _ in range(200):
+        r, Rp, Mt = root_majorant(sig0, p0, Rs, law)
+        if r >= Rs / MARGIN:  # Rs <= Rp / Mp: Rs may grow
+            lo = Rs
+        else:
+            hi = Rs
+        if hi <= 1.01 * lo:
+            break
+        Rs = 1.25 * Rs if hi == math.inf else (math.sqrt(lo * hi) if lo > 0.0 else 0.8 * Rs)
+    return root_majorant(sig0, p0, lo, law) if lo > 0.0 else root_majorant(sig0, p0, Rs, law)
+
+
+@njit(cache=True)
+def _binomial_power(n, sig0, H, S):
+    """S[j] = C(n, j) sig0^(n-j) H^j, j = 0..n: sigma^n in powers of (sigma - sig0)/H (no division by sig0)."""
+    S[n] = H**n
+    for j in range(n - 1, -1, -1):
+        S[j] = S[j + 1] * (sig0 / H) * (j + 1.0) / (n - j)
+
+
+@njit(cache=True)
+def root_coefficients(sig0, p0, side, law, H, K, Pc, Tc, R, S):
+    """H^k p^(k)/k! in Pc and H^k t^(k)/k! in Tc (k = 0..K, t(sig0) = 0) for eq. (R) around sig0.
+
+    ``side`` = sign of xi on this side of xi = 0; R, S are work arrays (R: length > K; S: length
+    > max(n_a, n_b, q - 1) + 1, three rows).  Cost O(K^2/2) (the reciprocal 1/p).
+    """
+    q, na, nb = root_exponents(law)
+    nt = int(q) - 1
+    rho = law[L_RHO]
+    mu2 = 2.0 * law[L_MU] * side
+    m = S.shape[1]
+    _binomial_power(na, sig0, H, S[0])
+    _binomial_power(nb, sig0, H, S[1])
+    _binomial_power(nt, sig0, H, S[2])
+    Pc[0] = p0
+    Tc[0] = 0.0
+    R[0] = 1.0 / p0
+    for k in range(K):
+        if k >= 1:
+            R[k] = -R[0] * _convolution(Pc, R, 1, k, k)
+        fa = 0.0
+        for j in range(0, min(k, na) + 1):
+            fa += S[0, j] * R[k - j]
+        ft = 0.0
+        for j in range(0, min(k, nt) + 1):
+            ft += S[2, j] * R[k - j]
+        fb = S[1, k] if k <= nb and k < m else 0.0
+        step = q * H * INV[k + 1]
+        Pc[k + 1] = -step * (rho * fa + mu2 * fb)
+        Tc[k + 1] = side * step * ft
+
+
+@njit(cache=True)
+def root_series(z, K, C):
+    """sum_{k=0..K} C[k] z^k (Horner)."""
+    acc = C[K]
+    for k in range(K - 1, -1, -1):
+        acc = acc * z + C[k]
+    return acc
