@@ -274,6 +274,16 @@ def test_probe_budget(name, monkeypatch):
     assert max(calls, default=0) <= PROBE_EVENTS, (name, sorted(calls)[-5:])
 
 
+def test_claim_discovery_does_not_load_sympy():
+    """Every snakemake parse and check job discovers all groups: sympy (~1 s) loads only in algebra's measurement."""
+    import subprocess
+    import sys
+
+    code = "import sys, bounce.checks as c; c.registry(); print('sympy.core' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
 def test_probe_budget_counts_long_runs(monkeypatch):
     """The counter sees a run inside an experiment (here errata's asymptotic run): the budget test can fail."""
     calls = _events_per_simulate_call(monkeypatch)
