@@ -25,7 +25,9 @@ from .checks.base import NOT_REPRODUCED
 def apply_defaults(instance: dict, schema: dict) -> dict:
     """Validate ``instance`` against ``schema`` (JSON Schema 2020-12) filling in the schema's defaults, as
     snakemake's ``validate(config, schema, set_default=True)`` does; returns the filled copy."""
-    from jsonschema import Draft202012Validator, validators
+    from .config import jsonschema
+
+    Draft202012Validator, validators = jsonschema.Draft202012Validator, jsonschema.validators
 
     def set_defaults(validator, properties, inst, sch):
         if isinstance(inst, dict):
@@ -90,11 +92,11 @@ def main(argv=None) -> int:
         print(f"error: group {name} has no claim {only!r}; claims: {', '.join(c.id for c in group.claims)}",
               file=sys.stderr)
         return 2
-    from jsonschema import ValidationError
+    from .config import jsonschema
 
     try:
         config = load_config(args.config, args.schema)
-    except ValidationError as exc:
+    except jsonschema.ValidationError as exc:
         where = "/".join(str(p) for p in exc.absolute_path)
         print(f"error: config {where}: {exc.message}", file=sys.stderr)
         return 2

@@ -20,10 +20,15 @@ from __future__ import annotations
 
 import copy
 import math
+import sys
 from pathlib import Path
 
-import jsonschema
 import yaml
+
+# jsonschema imports the optional rfc3987_syntax (a lark grammar built at import, ~2.7 s) for its "iri" format
+# checker; config/schema.yaml uses no format, and every snakemake parse and check job would pay it
+sys.modules.setdefault("rfc3987_syntax", None)
+import jsonschema  # after the line above
 
 from .errors import InputError
 
