@@ -145,15 +145,26 @@ def test_lint_is_clean_but_for_conda():
         (lambda c: c["report"]["subjects"].update({"thm main": "a subject without its label prefix"}), "thm main"),
     ],
 )
-def test_bad_config_stops_before_any_job(tmp_path, edit, message):
+def test_bad_config_is_refused_naming_the_key(edit, message):
+    """The Snakefile's contract (bounce.config.validated, called before any job) on the whole config."""
+    from bounce.config import ConfigError, validated
+
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     edit(config)
+    with pytest.raises(ConfigError, match=re.escape(message)):
+        validated(config)
+
+
+def test_bad_config_stops_snakemake_before_any_job(tmp_path):
+    """The same refusal through snakemake: non-zero exit, the key named, nothing written."""
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    config["checks"]["main-theorem"]["fit"].update(nmin=3)
     bad = tmp_path / "bad.yaml"
     bad.write_text(yaml.safe_dump(config))
     proc = _snakemake(tmp_path, "--configfile", str(bad), "-n", check=False)
     assert proc.returncode != 0
     out = proc.stdout + proc.stderr
-    assert message in out, out[-2000:]
+    assert "nmin" in out, out[-2000:]
     assert not (tmp_path / "results").exists()
 
 
