@@ -22,7 +22,7 @@ def main() -> int:
     parser.add_argument("--examples", type=int, default=3000, help="examples per property (default 3000)")
     args = parser.parse_args()
     os.environ["BOUNCE_FUZZ_EXAMPLES"] = str(args.examples)
-    os.environ["BOUNCE_FUZZ_RANDOM"] = "1"  # fresh examples each run (the test suite's are a fixed sequence)
+    os.environ["BOUNCE_HYPOTHESIS_RANDOM"] = "1"  # fresh examples each run (the test suite's are a fixed sequence)
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
     import test_fuzz  # noqa: E402  (reads BOUNCE_FUZZ_EXAMPLES at import)
 

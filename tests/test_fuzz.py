@@ -35,10 +35,8 @@ from bounce.model import InputError
 
 EPS = 2.0**-52
 MAX_EXAMPLES = int(os.environ.get("BOUNCE_FUZZ_EXAMPLES", "400"))
-#: the test suite draws a fixed sequence of examples (CI is reproducible); benchmarks/fuzz_cli.py draws fresh ones
-#: (BOUNCE_FUZZ_RANDOM=1) and a counterexample it finds becomes a test (e.g. test_edges.py's huge damping force)
+#: under pytest a fixed example sequence (tests/conftest.py); benchmarks/fuzz_cli.py draws fresh ones
 SETTINGS = settings(deadline=None, max_examples=MAX_EXAMPLES, database=None,
-                    derandomize=os.environ.get("BOUNCE_FUZZ_RANDOM") != "1",
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 #: outcome counts (accepted / refused by parameter), read by benchmarks/fuzz_cli.py
 OUTCOMES: Counter = Counter()
