@@ -112,8 +112,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         detaches = np.flatnonzero(tr.kind == DETACH)
         excess_1 = float(tr.energy_excess[starts[0]])
         emin_excess = theory.min_sticky_energy(gamma, mu) - theory.E_min(gamma)
-        D, alpha_D, alphas, _ = theory.least_sticky_dissipation(gamma, mu, excess_1, int(spec["n_alpha"]),
-                                                                int(spec["samples"]))
+        D, alpha_D, alphas, _ = theory.least_sticky_dissipation(gamma, mu, excess_1, int(spec["n_alpha"]))
         bound = theory.sticky_count_bound(gamma, mu, excess_1, D)
         drops = [float(tr.energy_excess[s] - tr.energy_excess[d]) for s in starts for d in detaches[detaches > s][:1]]
         onset_ok = bool(np.all(tr.energy_excess[starts] >= emin_excess * (1 - 1e-12)))
@@ -135,8 +134,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
                      f"gamma^2, D = {D / gamma**2:.4g} gamma^2 (at alpha_s = {alpha_D / gamma:.4g} gamma; D/mu = "
                      f"{D / mu / gamma**2:.4g} gamma^2: the bound grows like 1/mu), bound {bound:.4g}; dissipated per "
                      f"sticky event {[round(d / gamma**2, 6) for d in drops]} gamma^2",
-            tolerance="exact count; dissipation 1e-6 relative (Simpson on the closed form vs the simulator's energy "
-                      "records); onset energies 1e-12 relative",
+            tolerance="exact count; dissipation 1e-6 relative (the closed form's energy identity vs the simulator's "
+                      "energy records); onset energies 1e-12 relative",
             verdict=judge(ok))
     rows["sticky-count-bound"] = per_mu
     mus = np.array([float(m) for m in spec["mu"]])
