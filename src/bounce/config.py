@@ -25,12 +25,27 @@ from pathlib import Path
 
 import yaml
 
-# jsonschema imports the optional rfc3987_syntax (a lark grammar built at import, ~2.7 s) for its "iri" format
-# checker; config/schema.yaml uses no format, and every snakemake parse and check job would pay it
-sys.modules.setdefault("rfc3987_syntax", None)
-import jsonschema  # after the line above
-
 from .errors import InputError
+
+
+def _import_jsonschema():
+    """jsonschema, imported without its optional rfc3987_syntax (a lark grammar built at import, ~2.7 s, for the
+    "iri" format checker; config/schema.yaml uses no format, and every snakemake parse and check job would pay it).
+
+    The module is hidden only while jsonschema imports (its format module tries it once, then does without the
+    checker): whoever imports rfc3987_syntax later gets it.  A no-op when jsonschema is already imported."""
+    hide = "rfc3987_syntax" not in sys.modules
+    if hide:
+        sys.modules["rfc3987_syntax"] = None  # makes `import rfc3987_syntax` raise ImportError
+    try:
+        import jsonschema
+    finally:
+        if hide:
+            del sys.modules["rfc3987_syntax"]
+    return jsonschema
+
+
+jsonschema = _import_jsonschema()
 
 SCHEMA = Path(__file__).resolve().parents[2] / "config" / "schema.yaml"
 
