@@ -17,6 +17,8 @@
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -50,6 +52,15 @@ def test_registered_for_both_laws():
     assert spec is HT.METHOD
     assert set(spec.laws) == {"linear", "power"}
     assert spec.supports(HERTZ) and spec.supports(Parameters(GAMMA, MU))
+
+
+def test_listing_the_methods_does_not_load_heyoka():
+    """Discovery imports every method module: heyoka (~2.4 s) loads at the integrator's first use only."""
+    code = ("import sys, bounce.methods as m; m.registry(); print('heyoka._core' in sys.modules); "
+            "m.registry()['heyoka'].run; import bounce.methods.heyoka_taylor as h; h.hy.make_vars; "
+            "print('heyoka._core' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "True"]
 
 
 def test_linear_drop_matches_exact_solver():

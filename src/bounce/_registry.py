@@ -27,10 +27,12 @@ def lazy_import(name: str):
     """The module ``name``, executed at its first attribute access (importlib.util.LazyLoader).
 
     Discovery imports every plugin module; a plugin whose heavy dependency only its own measurement
-    needs (sympy, ~1 s) imports it this way, so parsing the workflow and every other job do not pay it."""
+    needs (sympy ~1 s, heyoka ~2.4 s) imports it this way, so parsing the workflow and every other job do not pay it."""
     if name in sys.modules:
         return sys.modules[name]
     spec = importlib.util.find_spec(name)
+    if spec is None:
+        raise ModuleNotFoundError(f"No module named {name!r}", name=name)
     loader = importlib.util.LazyLoader(spec.loader)
     spec.loader = loader
     module = importlib.util.module_from_spec(spec)

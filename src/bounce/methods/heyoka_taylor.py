@@ -38,7 +38,8 @@ Failure detection (from the integrator's own output):
 ``extra`` carries the post-impact ``xidot`` and ``eta`` (for one-step errors against the
 references), ``steps`` per flight, the cooldown heyoka used, ``start`` (the state it integrated
 from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` (one line) on failure.
-heyoka is imported on first use, so listing the methods does not load it.
+heyoka (~2.4 s to import) loads at its first use (:func:`bounce._registry.lazy_import`), so listing the methods
+does not load it.
 
 Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, Hertz a = b = 1/2, gamma = mu = 0.01, one
 core of a shared machine, load ~5, medians of 5; numbers in results/timing/bench_power.json): ~6e4
@@ -63,8 +64,11 @@ import time
 
 import numpy as np
 
+from .._registry import lazy_import
 from ..theory import nonlin_equilibrium_xi
 from .base import MethodResult, MethodSpec
+
+hy = lazy_import("heyoka")
 
 DEFAULTS = {"rho": None, "a": None, "b": None, "tol": 2.0**-52, "cooldown": None, "high_accuracy": False,
             "cpu_budget": math.inf}
@@ -98,8 +102,6 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
 
     Returns ``(ta, upward)``: the integrator and the list its non-terminal event appends the
     times of upward crossings of x = 0 to (cleared by the caller)."""
-    import heyoka as hy
-
     x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
     gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
     xi = xi_eq + eta
@@ -172,8 +174,6 @@ def _active_cooldown(ta):
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
     """heyoka restart loop; see the module docstring for the settings and failure rules."""
-    import heyoka as hy
-
     cfg = _setting(setting)
     rho, pa, pb, xi_eq = spring_law(params, cfg)
     gamma, mu = params.gamma, params.mu
