@@ -55,6 +55,29 @@ def hermite_value(y0, y1, d0, d1, s):
     return (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * d0 + (-2 * s3 + 3 * s2) * y1 + (s3 - s2) * d1
 
 
+@njit(cache=True, inline="always")
+def sample_step(ist, samples, y_samples, t0, t1, h, y, y1, v, v1):
+    """y at the sorted sample times in (t0, t1] (t0 included for the very first step) from the step's cubic
+    Hermite interpolant (step h, values y, y1, slopes v, v1); advances the sample slot."""
+    ns = samples.shape[0]
+    while ist[I_SAMPLE] < ns and samples[ist[I_SAMPLE]] <= t1:
+        ts = samples[ist[I_SAMPLE]]
+        if ts >= t0:
+            y_samples[ist[I_SAMPLE]] = hermite_value(y, y1, h * v, h * v1, (ts - t0) / h)
+        ist[I_SAMPLE] += 1
+
+
+@njit(cache=True, inline="always")
+def fell_through(ist, x1, u1, max_pen):
+    """True, with the failure recorded against the current contact, when the step overflowed or
+    went below the floor by more than ``max_pen``."""
+    if abs(x1) < 1e300 and abs(u1) < 1e300 and x1 >= -max_pen:
+        return False
+    ist[FAIL] = F_FELL
+    ist[FAIL_IDX] = max(ist[N_CONTACT] - 1, 0) if ist[IN_CONTACT] else ist[N_CONTACT]
+    return True
+
+
 def sorted_samples(sample_times):
     """(sorted sample times, order) or (empty array, None)."""
     if sample_times is None:

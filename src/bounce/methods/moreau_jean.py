@@ -49,8 +49,8 @@ import numpy as np
 from numba import njit
 
 from ._stepping import (
-    DONE, F_ENDLESS, F_FELL, F_GAIN, FAIL, FAIL_IDX, I_SAMPLE, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
-    drive, energy_excess, hermite_value, sorted_samples, unsort,
+    DONE, F_ENDLESS, F_GAIN, FAIL, FAIL_IDX, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
+    drive, energy_excess, fell_through, sample_step, sorted_samples, unsort,
 )
 from .base import MethodResult, MethodSpec
 
@@ -79,7 +79,6 @@ def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, Winv, n_steps, t_max,
     x, u, y, v = fs[X], fs[U], fs[Y], fs[V]
     w11, w12, w21, w22 = Winv[0, 0], Winv[0, 1], Winv[1, 0], Winv[1, 1]
     n = ist[N_STEP]
-    ns = samples.shape[0]
     for _ in range(n_steps):
         t0 = n * h
         if t0 >= t_max:
@@ -108,14 +107,8 @@ def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, Winv, n_steps, t_max,
         y1 = y + h * ((1.0 - theta) * v + theta * v1)
         n += 1
         t1 = n * h
-        while ist[I_SAMPLE] < ns and samples[ist[I_SAMPLE]] <= t1:
-            ts = samples[ist[I_SAMPLE]]
-            if ts >= t0:
-                y_samples[ist[I_SAMPLE]] = hermite_value(y, y1, h * v, h * v1, (ts - t0) / h)
-            ist[I_SAMPLE] += 1
-        if not (abs(x1) < 1e300 and abs(u1) < 1e300) or x1 < -max_pen:
-            ist[FAIL] = F_FELL
-            ist[FAIL_IDX] = max(ist[N_CONTACT] - 1, 0) if ist[IN_CONTACT] else ist[N_CONTACT]
+        sample_step(ist, samples, y_samples, t0, t1, h, y, y1, v, v1)
+        if fell_through(ist, x1, u1, max_pen):
             x, u, y, v = x1, u1, y1, v1
             break
         if x1 < fs[X_MIN]:

@@ -57,8 +57,8 @@ import numpy as np
 from numba import njit
 
 from ._stepping import (
-    DONE, F_ENDLESS, F_FELL, F_GAIN, FAIL, FAIL_IDX, I_SAMPLE, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
-    drive, energy_excess, hermite_value, sorted_samples, unsort,
+    DONE, F_ENDLESS, F_GAIN, FAIL, FAIL_IDX, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
+    drive, energy_excess, fell_through, sample_step, sorted_samples, unsort,
 )
 from .base import MethodResult, MethodSpec
 
@@ -101,7 +101,6 @@ def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, 
     x, u, y, v, ax, ay = fs[X], fs[U], fs[Y], fs[V], fs[AX], fs[AY]
     h2 = 0.5 * dt
     n = ist[N_STEP]
-    ns = samples.shape[0]
     for _ in range(n_steps):
         t0 = n * dt
         if t0 >= t_max:
@@ -131,15 +130,8 @@ def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, 
         ay1 = py - mu * v1 + mu * u1
         n += 1
         t1 = n * dt
-        # samples of y in (t0, t1] (t0 included for the very first step)
-        while ist[I_SAMPLE] < ns and samples[ist[I_SAMPLE]] <= t1:
-            ts = samples[ist[I_SAMPLE]]
-            if ts >= t0:
-                y_samples[ist[I_SAMPLE]] = hermite_value(y, y1, dt * v, dt * v1, (ts - t0) / dt)
-            ist[I_SAMPLE] += 1
-        if not (abs(x1) < 1e300 and abs(u1) < 1e300) or x1 < -max_pen:
-            ist[FAIL] = F_FELL
-            ist[FAIL_IDX] = max(ist[N_CONTACT] - 1, 0) if ist[IN_CONTACT] else ist[N_CONTACT]
+        sample_step(ist, samples, y_samples, t0, t1, dt, y, y1, v, v1)
+        if fell_through(ist, x1, u1, max_pen):
             x, u, y, v, ax, ay = x1, u1, y1, v1, ax1, ay1
             break
         if x1 < fs[X_MIN]:
