@@ -160,14 +160,14 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
         x0 = 0.0
     if abs(Gs0) <= 8.0 * EPS * (abs(es0) * (1.0 + 2.0 * mu * mu) + SQRT2 * mu * abs(eta)):
         Gs0 = 0.0
-    s_start = 0.0
-    if x0 == 0.0 and Gs0 >= 0.0:
-        if Gs0 > 0.0:
-            return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
-        # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
-        s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
+    if x0 == 0.0 and Gs0 > 0.0:
+        return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
     if sparams[P_BRANCH] == OVER and sparams[P_FREQ] >= 1.0:
         return _sticky_modes(a, eta, gamma, t_limit, sparams)
+    s_start = 0.0
+    if x0 == 0.0 and Gs0 == 0.0:
+        # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
+        s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
     status, s, _, _, omc, _, _, _, S, Sd, _ = first_contact(
         s_start, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
     )
@@ -195,8 +195,9 @@ def _sticky_modes(a, eta, gamma, t_limit, sparams):
     whose terms (2 mu xi' and 2 mu^2 xi') exceed F by up to 1e16 at mu = 1e8.  Error bound: F(s) to a few
     ulps of |P| e^{-l s} (1 + l s) + |Q| e^{-L s} (1 + L s) + 2 gamma (the factors: the rounding of the
     exponents), plus the sensitivity of A and B to the half ulps of a and eta (the input's own); the detach
-    time to that over F' there (1e-12 relative against mpmath in tests/test_edges.py).  A maximum within 8 ulps of its terms
-    counts as F < 0 (a tangency, not a crossing: approximation at the rounding level, as for contacts).
+    time to that over F' there (1e-12 relative against mpmath in tests/test_edges.py).  A maximum within
+    8 ulps of its terms counts as F < 0 (a tangency, not a crossing: approximation at the rounding level,
+    as for contacts).
     """
     beta = sparams[P_MU]
     kappa = sparams[P_FREQ]
