@@ -15,11 +15,14 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, example, given, settings
+from hypothesis import strategies as st
 from mpmath import mp, mpf
 
 import reference as R
 from bounce import Deviations, Parameters, State, simulate
 from bounce.io import EVENT_VARIABLES
+from bounce.model import FLIGHT_MAX
 from bounce.oscillator import SERIES_Q, fundamental, make_oscillator
 
 EPS = 2.0**-52
@@ -179,13 +182,10 @@ def test_sticky_start_strong_overdamping(gamma, mu):
         assert abs(tr.t[1] - float(td)) <= 1e-12 * float(td)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "known failure (found by tests/test_fuzz.py): a sticky phase whose start carries a damping force 2 mu xi' "
-    "of 1e7 against a floor force of 1e-3 detaches at t = 0.153 with F = -2 gamma: events._sticky_phase hands "
-    "the gap to first_contact as a flight with u = -a, whose terms u s and a (s - S) (~3e13) cancel to ~1e7, so "
-    "the gap's sign is not resolved; the reference proves the phase infinite"))
 def test_sticky_phase_with_a_huge_damping_force():
-    """mu = 1e7 from rest on the floor with y' = -1 (xi' = -1/2): the reference's verdict (here: never detaches)."""
+    """mu = 1e7 from rest on the floor with y' = -1 (xi' = -1/2): the reference's verdict (here: never detaches).
+    Found by tests/test_fuzz.py: the damping force 2 mu xi' = -1e7 against a floor force of 1e-3 used to detach
+    at t = 0.153 (the gap's flight form cancelled ~3e13 to ~1e7, see events._sticky_modes)."""
     gamma, mu = 1e-3, 1e7
     p = Parameters(gamma, mu)
     s0 = State(x=0.0, xdot=0.0, y=1.0, ydot=-1.0)
@@ -193,6 +193,58 @@ def test_sticky_phase_with_a_huge_damping_force():
     td, _ = R.sticky_detach(gamma, mu, *R.rest_state(gamma, s0.deviations(p)))
     assert tr.kind[0] == 2 and td is None
     assert tr.stop_reason == "sticky_forever" and len(tr) == 1, (tr.kind_names, tr.t)
+
+
+def assert_sticky_phase_as_reference(gamma, mu, s0):
+    """A start at rest on the floor that the reference calls sticky: sticky_start at t = 0, then the reference's
+    verdict, a detach (1e-12 relative, also y - y_eq and ydot there, as in test_sticky) or 'sticky_forever'."""
+    p = Parameters(gamma, mu)
+    tr = simulate(p, s0, max_events=2)
+    td, wd = R.sticky_detach(gamma, mu, *R.rest_state(gamma, s0.deviations(p)))
+    assert tr.kind[0] == 2 and tr.t[0] == 0.0, tr.kind_names
+    if td is None:
+        assert tr.stop_reason == "sticky_forever" and len(tr) == 1, (tr.kind_names, tr.t)
+        return
+    assert len(tr) == 2 and tr.kind[1] == 3, (tr.kind_names, tr.stop_reason)
+    with mp.workdps(R.DPS):
+        assert abs(mpf(tr.t[1]) - td) <= 1e-12 * td, (tr.t[1], float(td))
+        w, wdot = wd  # x = xdot = 0 at detach: y - y_eq = 2 eta, ydot = 2 xi'
+        size = abs(w) + abs(wdot)
+        assert abs(2 * mpf(tr.eta[1]) - w) <= 1e-12 * size and abs(2 * mpf(tr.xidot[1]) - wdot) <= 1e-12 * size
+
+
+#: y' < 0 at rest on the floor, per gamma, down to 1e-4 of the largest start the energy bound allows
+#: (model.check_supported: flights <= 1e8, E - E_m = y'^2/4 here)
+PRESSING_SPEEDS = {1e-3: [-10.0, -1.0, -0.1, -1e-3], 1e-12: [-5e-5, -5e-6, -5e-7, -5e-9]}
+
+
+@pytest.mark.parametrize("mu", [1e3, 1e4, 1e5, 1e6, 1e7, 3e7, 1e8])
+@pytest.mark.parametrize("gamma, ydot", [(g, v) for g, speeds in PRESSING_SPEEDS.items() for v in speeds])
+def test_sticky_phases_under_huge_damping_forces(gamma, ydot, mu):
+    """The class of the failure above: rest on the floor at y = 1 with y' < 0 presses the lower mass by the
+    damping force 2 mu xi' = mu y' (up to 1e9 against 2 gamma = 2e-3, or 5e3 against 2e-12); every such
+    phase is the reference's (before the fix 10 of the 28 at gamma = 1e-3 and 15 of the 28 at gamma = 1e-12
+    detached, at t from 3e-7 to 4e7; one gave t = nan)."""
+    assert_sticky_phase_as_reference(gamma, mu, State(x=0.0, xdot=0.0, y=1.0, ydot=ydot))
+
+
+@settings(deadline=None, max_examples=60)
+@given(st.floats(-12.0, math.log10(0.4)), st.floats(math.log10(2.0), 8.0), st.floats(-1.0, 1.0),
+       st.floats(-6.0, 0.0), st.booleans())
+@example(-3.0, 7.0, 1e-3 / 0.9, -1.0 + math.log10(2.0), False)  # the failure above, y = y_eq + 2 gamma, y' = -1
+@example(-3.0, math.log10(3.0), -0.4, -6.0, False)  # a detach after the fast mode has died out
+def test_sticky_phases_of_over_damped_springs(log_gamma, log_mu, dy_rel, log_speed, upward):
+    """Rest on the floor (x = x' = 0) at y = y_eq + dy with |y'| = 10^log_speed V of either sign, at mu from 2
+    (the sticky oscillator's damping ratio mu/sqrt(2) from sqrt(2)) to 1e8; dy = dy_rel * min(0.9, 2 V) and
+    V = min(10, sqrt(E_max)) keep E - E_m = y'^2/4 + dy^2/8 within the supported range E_max.  Where the
+    start is pressed onto the floor beyond rounding, the reference's verdict and detach time."""
+    gamma, mu = 10.0**log_gamma, 10.0**log_mu
+    speed = min(10.0, math.sqrt((FLIGHT_MAX * gamma) ** 2 / 12))
+    dy = dy_rel * min(0.9, 2.0 * speed)
+    ydot = (1.0 if upward else -1.0) * 10.0**log_speed * speed
+    floor_force = dy / 2 + mu * ydot - 2 * gamma  # eq. force-on-the-floor at rest
+    assume(floor_force < -1e-9 * (abs(dy) + mu * abs(ydot) + 2 * gamma))  # pressed beyond rounding
+    assert_sticky_phase_as_reference(gamma, mu, State(x=0.0, xdot=0.0, y=1.0 - 2.0 * gamma + dy, ydot=ydot))
 
 
 def test_flights_beyond_the_root_finder_are_refused_up_front():

@@ -16,9 +16,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
-from mpmath import mp, mpf
+from mpmath import libmp, mp, mpf
 
 from bounce.flight import FOUND, first_contact, flight_spring, gap, xi_derivatives
 from bounce.oscillator import P_RHO, make_oscillator
@@ -85,6 +86,8 @@ def test_agrees_with_first_contact(g, mu, a, eta, speed):
 @settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow])
 @given(gammas, mus, small, small, speeds)
 @example(1e-5, 0.01, 1e-3, 2e-5, 1e-6)
+@example(10**-2.5, 0.0, 0.0, 0.0, 2.2305667510403096e-05)  # the reference's Newton cycled (u = 1.4e-7, as in CI)
+@example(10**-2.5, 0.0, 0.0, 0.0, 1.7434584526105008e-09)  # ... and at u = 1.1e-11
 def test_found_is_the_first_root_of_the_exact_flight(g, mu, a, eta, speed):
     """The certificate of the Newton step and of the march: a FOUND time is the reference's first
     root (mpmath, non-skipping search) to found_root_tolerance, with |x| there within rounding."""
@@ -99,6 +102,25 @@ def test_found_is_the_first_root_of_the_exact_flight(g, mu, a, eta, speed):
     with mp.workdps(reference_digits(u)):
         x_ref = reference_flight(g, mu, 0.0, u, a, eta).x(mpf(t))
     assert abs(x_ref) <= abs(v) * tol + x_tolerance(t, a, eta, g, params, scale)
+
+
+@pytest.mark.parametrize("speed", [2.2305667510403096e-05, 1.7434584526105008e-09])
+def test_reference_root_below_the_rounding_of_its_terms(speed):
+    """States on which reference._refine did not converge: mu = 0, gamma = 10^-2.5, a = eta = 0 (the CI
+    draw had u ~ 1.4e-7; fresh draws of this file's strategies there fail ~1 in 200 with a = eta = 0), here
+    u = 1.4e-7 and 1.1e-11.  x ~ u t (4e-20 at u = 1.1e-11) is formed from terms ~gamma = 3e-3, so at the
+    digits of reference_digits(u) the computed x is a staircase (steps 5.5e-76 at 243 bits for u = 1.1e-11)
+    across which plain Newton cycled.  The safeguarded refinement returns the root to its stated bound
+    tol |t| + delta / |x'|, delta = 4 * 2^-prec gamma, checked against the same search at 40 more digits."""
+    g, mu, a, eta = 10**-2.5, 0.0, 0.0, 0.0
+    u = start(g, mu, a, eta, speed)
+    tau = reference_root(g, mu, (0.0, u, a, eta))
+    digits = reference_digits(u)
+    with mp.workdps(digits + 40):
+        exact = reference_flight(g, mu, 0.0, u, a, eta).first_contact()
+        prec = libmp.dps_to_prec(digits)
+        bound = mpf(2) ** (8 - prec) * exact + 4 * mpf(2) ** -prec * g / u  # x' ~ -u at the root
+        assert abs(tau - exact) <= bound, (float(tau), float(exact), float(abs(tau - exact) / exact))
 
 
 def test_handover_when_the_window_is_long():

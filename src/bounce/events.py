@@ -16,7 +16,11 @@ State between events, in the deviation variables of :mod:`bounce.flight`:
   first return of G to 2 gamma.  The detach search is the flight root finder on
   the gap 2 gamma - G (g = 0 in eq. (F)); if the amplitude envelope
   sqrt(G^2 + G_s^2), which never increases, falls below 2 gamma, G can never
-  return and the sticky phase is proved infinite.
+  return and the sticky phase is proved infinite.  From mu = 2 on (damping ratio
+  mu/sqrt(2) >= sqrt(2)) G is followed in its two exponential modes instead: there
+  G(0) and G'(0) carry the damping force 2 mu xi' and 2 mu^2 xi', terms that a gap
+  of 2 gamma cannot be resolved against (mu = 1e7, xi' = -1/2: ~3e13 cancelling to
+  ~1e7 in eq. (F), beside 2 gamma = 2e-3), while the modes are O(F) themselves.
 
 Zero-speed contacts.  Rounding leaves x uncertain by ``xn = 4 eps scale``; near a
 tangency this hides a time window delta, and with it a speed.  A contact whose
@@ -53,6 +57,7 @@ from numba import njit
 
 from .flight import (
     EPS,
+    FAILED,
     FOUND,
     HORIZON,
     NEVER,
@@ -62,7 +67,7 @@ from .flight import (
     oscillator_at,
     xi_derivatives,
 )
-from .oscillator import P_MU, P_RHO
+from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight
 
 # event kinds (netCDF flag_values)
@@ -74,6 +79,9 @@ STOP_EVENTS, STOP_TIME, STOP_ENERGY, STOP_STICKY_FOREVER, STOP_FAILED = range(5)
 STOP_NAMES = ("max_events", "t_max", "energy", "sticky_forever", "root_finder_failed")
 
 SQRT2 = math.sqrt(2.0)
+#: cap on the Newton steps of :func:`_sticky_modes`: from s = 0 each step gains ~1/L while the fast mode
+#: dominates, i.e. ln(|Q| / |P - 2 gamma|) <= ~750 steps (the range of float64), then it converges quadratically
+MODE_NEWTON_STEPS = 1000
 
 # zero-speed contacts (module docstring): x is known to xn = XN_ULPS eps scale; a contact is tangential
 # if its speed is below WINDOW_FACTOR times what the hidden window resolves, in powers:
@@ -134,7 +142,12 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
     """Duration of a sticky phase starting from (a, eta) and the state at detachment.
 
     Returns ``(status, duration, a_d, eta_d)``; status FOUND (detach), HORIZON
-    (still sticky at t_limit) or NEVER (infinite sticky phase, proved).
+    (still sticky at t_limit) or NEVER (infinite sticky phase, proved).  A strongly
+    over-damped sticky oscillator (damping ratio mu/sqrt(2) >= sqrt(2)) is followed
+    in its two modes (:func:`_sticky_modes`), any other by the flight root finder on
+    the gap 2 gamma - G (module docstring): its terms stay within a few |G0| + |G0'|,
+    while those of a stiff one reach 2 mu^2 |xi'| (3e13 at mu = 1e7) and leave the
+    sign of a gap of 2 gamma unresolved.
     """
     mu = sparams[P_MU] * SQRT2
     # scaled time s = t / sqrt(2): eta_s = sqrt(2) eta'
@@ -147,10 +160,12 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
         x0 = 0.0
     if abs(Gs0) <= 8.0 * EPS * (abs(es0) * (1.0 + 2.0 * mu * mu) + SQRT2 * mu * abs(eta)):
         Gs0 = 0.0
+    if x0 == 0.0 and Gs0 > 0.0:
+        return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
+    if sparams[P_BRANCH] == OVER and sparams[P_FREQ] >= 1.0:
+        return _sticky_modes(a, eta, gamma, t_limit, sparams)
     s_start = 0.0
-    if x0 == 0.0 and Gs0 >= 0.0:
-        if Gs0 > 0.0:
-            return FOUND, 0.0, a, eta  # F = 0, F' > 0: detach at once (eq. cond_di_distacco)
+    if x0 == 0.0 and Gs0 == 0.0:
         # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
         s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
     status, s, _, _, omc, _, _, _, S, Sd, _ = first_contact(
@@ -160,6 +175,65 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
         return status, s * SQRT2, a, eta
     eta_d, es_d = oscillator_at(eta, es0, omc, S, Sd)
     return FOUND, s * SQRT2, es_d / SQRT2, eta_d
+
+
+@njit(cache=True)
+def _sticky_modes(a, eta, gamma, t_limit, sparams):
+    """:func:`_sticky_phase` of a strongly over-damped sticky oscillator (kappa >= 1), in its modes.
+
+    In s = t/sqrt(2), eta = A e^{-l s} + B e^{-L s} with the slow and fast rates l = 1/L, L = beta + kappa
+    (beta = mu/sqrt(2), kappa = sqrt(beta^2 - 1)), A = (eta_s + L eta)/(2 kappa), B = -(eta_s + l eta)/(2 kappa);
+    G = eta + 2 beta eta_s = -eta_ss (eq. force-on-the-floor), so
+
+        F(s) = P e^{-l s} + Q e^{-L s} - 2 gamma,    P = -l^2 A,  Q = -L^2 B,
+
+    every term formed from the state (a, eta) without cancellation (kappa >= 1: |A| + |B| <= |eta_s| +
+    sqrt(2) |eta|).  F' = -l P e^{-l s} - L Q e^{-L s} vanishes at most once, and F tends to -2 gamma; so
+    the phase (F(0) <= 0) ends iff P > 0 > Q and F > 0 at the maximum s* = ln(L |Q| / (l P)) / (2 kappa) > 0,
+    and then at the one root in (0, s*), where F is increasing and concave (its inflection lies beyond s*):
+    Newton from the left converges monotonically to it.  Invariant: F is never formed from G(0) and G'(0),
+    whose terms (2 mu xi' and 2 mu^2 xi') exceed F by up to 1e16 at mu = 1e8.  Error bound: F(s) to a few
+    ulps of |P| e^{-l s} (1 + l s) + |Q| e^{-L s} (1 + L s) + 2 gamma (the factors: the rounding of the
+    exponents), plus the sensitivity of A and B to the half ulps of a and eta (the input's own); the detach
+    time to that over F' there (1e-12 relative against mpmath in tests/test_edges.py).  A maximum within
+    8 ulps of its terms counts as F < 0 (a tangency, not a crossing: approximation at the rounding level,
+    as for contacts).
+    """
+    beta = sparams[P_MU]
+    kappa = sparams[P_FREQ]
+    lam = sparams[P_LSLOW]
+    Lam = sparams[P_LFAST]
+    es0 = SQRT2 * a
+    A = (es0 + Lam * eta) / (2.0 * kappa)
+    B = -(es0 + lam * eta) / (2.0 * kappa)
+    P = -lam * lam * A
+    Q = -Lam * Lam * B
+    if not (P > 0.0 and Q < 0.0):
+        return NEVER, t_limit, a, eta  # F monotone, or a minimum: below max(F(0), -2 gamma) <= 0
+    s_max = (math.log(Lam / lam) + math.log(-Q) - math.log(P)) / (2.0 * kappa)
+    if not s_max > 0.0:
+        return NEVER, t_limit, a, eta  # F decreasing from F(0) <= 0
+    slow, fast = P * math.exp(-lam * s_max), Q * math.exp(-Lam * s_max)
+    if slow + fast - 2.0 * gamma <= 8.0 * EPS * (slow - fast + 2.0 * gamma):
+        return NEVER, t_limit, a, eta
+    s_limit = t_limit / SQRT2
+    s = 0.0
+    for _ in range(MODE_NEWTON_STEPS):
+        slow, fast = P * math.exp(-lam * s), Q * math.exp(-Lam * s)
+        F = slow + fast - 2.0 * gamma
+        if F >= 0.0:
+            break  # a root within rounding: concave F puts every Newton iterate left of it
+        step = -F / (-lam * slow - Lam * fast)
+        if step <= 2.0 * EPS * s or s > s_limit:
+            s = min(s + step, s_max)
+            break
+        s = min(s + step, s_max)
+    else:
+        return FAILED, t_limit, a, eta
+    if s > s_limit:
+        return HORIZON, t_limit, a, eta
+    e_slow, e_fast = A * math.exp(-lam * s), B * math.exp(-Lam * s)
+    return FOUND, s * SQRT2, (-lam * e_slow - Lam * e_fast) / SQRT2, e_slow + e_fast
 
 
 @njit(cache=True)
