@@ -26,7 +26,9 @@ from hypothesis import strategies as st
 from mpmath import mp, mpf
 
 import reference as R
-from bounce.oscillator import N_COEFS, P_RHO, SERIES_Q, build_oscillator, fundamental, make_oscillator
+from bounce.oscillator import (
+    N_COEFS, P_RHO, SERIES_Q, build_oscillator, fundamental, make_oscillator, natural_frequency,
+)
 
 EPS = 2.0**-52
 SETTINGS = settings(deadline=None, max_examples=60)
@@ -256,6 +258,22 @@ def test_small_parts_beyond_the_switch_lose_at_most_a_factor_4(mu):
             ulps = float(abs(mpf(g) - r) / abs(r)) / EPS
             assert ulps <= 16, f"{name}: relative error {ulps:.0f} ulps at q = {q:.2f}"
 
+
+
+@settings(deadline=None, max_examples=300)
+@given(st.one_of(st.floats(0.0, 1.0, exclude_max=True), st.floats(1.0, 1e8, exclude_min=True),
+                 st.floats(-20.0, 0.0).map(lambda e: 10.0**e)))
+@example(1e-16)  # the product (1 - mu)(1 + mu) rounded to 1 - eps here: a phase error ~eps t on long flights
+@example(0.4999999999999999)
+@example(0.5)
+def test_natural_frequency_within_its_ulp_bound(mu):
+    """sqrt(|1 - mu^2|) to 1.25 ulp against mpmath (the bound in its docstring); correctly rounded below 1e-8."""
+    w = natural_frequency(mu)
+    with mp.workdps(40):
+        exact = mp.sqrt(abs(1 - mpf(mu) ** 2))
+    assert abs(w - exact) <= 1.25 * math.ulp(float(exact))
+    if mu < 1e-8:
+        assert w == 1.0
 
 @pytest.mark.parametrize("mu", [-1.0, math.nan, math.inf])
 def test_rejects_unphysical_damping(mu):

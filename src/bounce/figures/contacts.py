@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import theory
 from .common import WIDTH, plt, save, tex_num
 
 IMPACT = 0
@@ -45,7 +46,7 @@ def rest_coeff(datasets, spec, outputs) -> None:
     _impact_only(ds)
     tau = ds["tau"].values
     mu = float(ds.attrs["mu"])
-    T_xi = np.pi / np.sqrt(1.0 - mu**2)
+    T_xi = theory.T_xi(mu)
     if restitution.attrs.get("rest_scene") != ds.attrs.get("scene"):
         raise ValueError(f"check restitution read scene {restitution.attrs.get('rest_scene')!r}, "
                          f"the figure draws {ds.attrs.get('scene')!r}")

@@ -50,6 +50,7 @@ from ..events import IMPACT
 from ..model import Deviations, InputError, Parameters
 from ..sampling import sample_trajectory
 from ..simulate import simulate
+from ..theory import T_xi
 from . import contact_switch, exact, rigid
 
 #: CPU ratios below this count as a tie, broken in favour of the exact solver
@@ -87,7 +88,7 @@ def _double_impacts(t_impacts: np.ndarray, mu: float) -> int:
     """Leading contacts m = 1, 2, ... that are double impacts: inner flight tau_{2m-1} within DOUBLE_BAND of
     T_xi = pi/sqrt(1 - mu^2) (eq. char-times); beyond them f_n = tau_{2n} is not a macroscopic flight."""
     tau = np.diff(np.concatenate([[0.0], t_impacts]))
-    inner = tau[1::2] / (math.pi / math.sqrt(1.0 - mu * mu)) if mu < 1.0 else np.zeros(0)
+    inner = tau[1::2] / T_xi(mu) if mu < 1.0 else np.zeros(0)
     ok = np.abs(inner - 1.0) <= DOUBLE_BAND
     return int(ok.size if ok.all() else np.argmin(ok))
 
