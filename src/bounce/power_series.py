@@ -200,7 +200,10 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[1] = v0 * H
     H2 = H * H
     if ap1 == b + 1.0 and not lin_b:
-        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
+        if K > DEGREE_SHORT:
+            _equal_powers_split(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
+        else:
+            _equal_powers_single(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
         return
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
@@ -249,7 +252,21 @@ def _convolution(A, B, lo, hi, k):
 
 
 @njit(cache=True)
-def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+def _equal_powers_split(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+    """:func:`_coefficients_equal_powers` with the Cauchy sums in four partial sums (K > DEGREE_SHORT)."""
+    _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, True)
+
+
+@njit(cache=True)
+def _equal_powers_single(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+    """:func:`_coefficients_equal_powers` with one accumulator per sum: the hot path's low degrees, where the
+    split's setup costs more than it saves (and its code alone, compiled into the same kernel, cost the
+    deep regime ~8% of its instructions: a separate kernel per variant)."""
+    _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, False)
+
+
+@njit(cache=True, inline="always")
+def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, split):
     """:func:`taylor_coefficients` for a = b > 0 (Hertz among them): one power, one product.
 
     Then r xi |xi|^a + 2 m xi' |xi|^b = (r xi + 2 m xi') Q with Q = |xi|^b, so for k >= 1
@@ -261,12 +278,12 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
     b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
     (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
     Same coefficients up to the rounding of the sums (a few ulps times the degree).  Y is a
-    work array (length > K).
+    work array (length > K).  ``split`` (a constant of each caller): the Cauchy sums in four
+    partial sums (:func:`_convolution`) or in one.
     """
     H2 = H * H
     Q[0] = q0
     half = b == 0.5
-    split = K > DEGREE_SHORT  # the hot path's low degrees: one sum (the split's setup costs more there)
     inv_2q0 = 0.5 / q0
     for k in range(0, K - 1):
         if k >= 1:
