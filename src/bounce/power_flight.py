@@ -82,7 +82,8 @@ duration (t): exact to rounding like the windows above.  For Hertz (mu = 0.05) i
 |xi| <= 3e-3 before and 6e-3 after the crossing at |v| = 0.03 (2e-2 and 4e-2 at |v| = 0.3); on the
 drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200 series steps
 per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
-right expansion).  Approximations: sigma0 is the
+right expansion; heyoka takes ~375 steps on the same flights, at about the same cost per step:
+``python benchmarks/bench_power_steps.py``).  Approximations: sigma0 is the
 rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
 sigma1 is xi1 = -s sigma1^q rounded.  The step ends before the floor can be reached (the safe
 step of the flight's curvature bound) and before t_limit: sigma1 is taken smaller where needed,
