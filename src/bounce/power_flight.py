@@ -82,7 +82,8 @@ duration (t): exact to rounding like the windows above.  For Hertz (mu = 0.05) i
 |xi| <= 3e-3 before and 6e-3 after the crossing at |v| = 0.03 (2e-2 and 4e-2 at |v| = 0.3); on the
 drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200 series steps
 per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
-right expansion).  Approximations: sigma0 is the
+right expansion; heyoka takes ~375 steps on the same flights, at about the same cost per step:
+``python benchmarks/bench_power_steps.py``).  Approximations: sigma0 is the
 rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
 sigma1 is xi1 = -s sigma1^q rounded.  The step ends before the floor can be reached (the safe
 step of the flight's curvature bound) and before t_limit: sigma1 is taken smaller where needed,
@@ -147,6 +148,7 @@ from .power_series import (
     root_radius,
     root_series,
     root_exponents,
+    series_radius,
     tail_bounds,
     taylor_coefficients,
 )
@@ -709,6 +711,22 @@ def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X, st
 
 
 @njit(cache=True)
+def _short_degree(theta, Rz, Rp, tol_x, tol_v):
+    """The least degree K <= DEGREE_SHORT whose tail bounds (:func:`bounce.power_series.tail_bounds`) at
+    theta <= 1/4 are below tol_x (x) and tol_v (x'); 0 if there is none."""
+    if not theta <= 0.25:
+        return 0
+    K = 3
+    tk = theta * theta * theta / (1.0 - theta) * MARGIN  # theta^K / (1 - theta), as in tail_bounds
+    while Rz * tk * theta > tol_x or Rp * tk > tol_v:
+        K += 1
+        tk *= theta
+        if K > DEGREE_SHORT:
+            return 0
+    return K
+
+
+@njit(cache=True)
 def short_flight(u, v, eta, law, X, P, Q):
     """First contact of a flight from the floor (x = 0, x' = u > 0) as one series step.
 
@@ -716,8 +734,11 @@ def short_flight(u, v, eta, law, X, P, Q):
     is not one short step (then the caller runs :func:`first_contact`).
 
     Window T = 2.5 u / (gamma + |xi''(0)|) (over-estimates the flight, whose
-    curvature is ~ gamma + xi''); degree K the least for which the tail bounds on
-    [0, T] are below 2^-55 u T (x) and 2^-55 u (x').  Fast path: the root t_p of
+    curvature is ~ gamma + xi''); degree K <= DEGREE_SHORT the least for which the tail bounds on
+    [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the cheap first radius of
+    :func:`bounce.power_series.cauchy_radius`, else with the comparison radius of
+    :func:`bounce.power_series.series_radius` (~2x near the spring's turning point, where these
+    flights start: it keeps the Hertz drop's flights from impact ~3e3 on in this path, K <= 24).  Fast path: the root t_p of
     the cubic model, then Newton steps dt = -x/x', each certified as in
     :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
     B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
@@ -735,18 +756,14 @@ def short_flight(u, v, eta, law, X, P, Q):
     sigma_p0 = p0 if xi0 > 0.0 else -p0
     xidd0 = -rho * sigma_p0 - 2.0 * mu * v * q0
     T = 2.5 * u / (gamma + abs(xidd0))
-    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
-    theta = T / radius
-    if not theta <= 0.25:
-        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     tol_x = TOL * u * T
     tol_v = TOL * u
-    K = 3
-    tk = theta * theta * theta / (1.0 - theta) * MARGIN  # theta^K / (1 - theta), as in tail_bounds
-    while Rz * tk * theta > tol_x or Rp * tk > tol_v:
-        K += 1
-        tk *= theta
-        if K > DEGREE_SHORT:
+    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+    K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
+    if K == 0:  # the cheap radius first; the comparison radius is ~2x near a turning point of the spring
+        radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+        K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
+        if K == 0:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
     B = _curvature_bound_near(w0, v, p0, q0, law)

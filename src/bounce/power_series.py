@@ -41,6 +41,24 @@ chosen to balance the two limits.  Cauchy's estimate gives |X_k| <= Rz / r_c^k a
 truncated after h^K is in error by at most Rz theta^(K+1) / (1 - theta), and the
 series of xi' (degree K - 1) by at most Rp theta^K / (1 - theta).  These bounds
 are what :mod:`bounce.power_flight` compares with the rounding level of x and x'.
+
+A larger r_c from a linear comparison equation (:func:`comparison_radius`; near a turning point
+of the spring, v0 ~ 0, it is ~2x the r_c above for Hertz: the bound M is the force at the edge of
+D, reached only late).  On the disc |z - xi0| <= Rz the restoring part of (S) is within
+L |z - xi0| of its value at xi0, L = r (a+1) (1.95 |xi0|)^a (mean value theorem on the convex
+disc; L = r for a = 0), and the damping is <= M1 |p| with M1 as above, so along a ray
+t = s e^(i phi), while xi stays in the disc, e(s) >= |xi - xi0| and e'(s) - |v0| >= |xi' - v0|
+for the solution of
+
+    e'' = A0 + L e + M1 e',   e(0) = 0, e'(0) = |v0|,   A0 = c0 + r |xi0|^(a+1)            (C)
+
+(the integral inequalities of (S) have non-negative kernels; Gronwall's comparison).  So for
+r_c = s with e(s) <= Rz the solution is holomorphic on |t| < r_c with |xi - xi0| <= Rz, and
+|xi' - v0| <= Rp = s (A0 + L e(s) + M1 |v0|) / (1 - M1 s) (e'(s) = |v0| + int_0^s e'' with
+e, e' increasing; needs M1 s < 1): the same tail bounds hold with this (r_c, Rz, Rp).
+e has non-negative Taylor coefficients (no cancellation), summed with a rigorous tail.
+:func:`series_radius` returns the larger of the two radii.
+
 The coefficients themselves carry the usual relative rounding of a recurrence
 (a few ulps times the degree); they are not part of the bound.
 
@@ -78,7 +96,9 @@ DISC = 0.95
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
-DEGREE_SHORT = 12
+DEGREE_SHORT = 24
+#: from this degree up the Hertz recurrence's Cauchy sums run in four partial sums (below, one is faster).
+DEGREE_SPLIT = 12
 #: relative margin on computed bounds (covers their own rounding).
 MARGIN = 1.0 + 1e-12
 
@@ -91,8 +111,10 @@ LAW_SIZE = 12
 ROOT_DEGREE = 64
 #: the root variable is used for a, b in (1/ROOT_Q_MAX) Z (dyadic, so q a, q b are exact in float64).
 ROOT_Q_MAX = 8
+#: terms of the comparison series (:func:`excursion`; ~25 where it is used).
+EXCURSION_TERMS = 60
 #: 1/k (INV[0] unused)
-INV = np.array([0.0] + [1.0 / k for k in range(1, max(DEGREE_LONG, ROOT_DEGREE) + 3)])
+INV = np.array([0.0] + [1.0 / k for k in range(1, max(DEGREE_LONG, ROOT_DEGREE, EXCURSION_TERMS) + 3)])
 
 
 def root_denominator(a: float, b: float) -> int:
@@ -200,7 +222,10 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[1] = v0 * H
     H2 = H * H
     if ap1 == b + 1.0 and not lin_b:
-        _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
+        if K > DEGREE_SPLIT:
+            _equal_powers_split(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
+        else:
+            _equal_powers_single(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
         return
     P[0] = sigma * p0  # sigma P_k: the coefficients of xi |xi|^a
     Q[0] = q0
@@ -249,7 +274,21 @@ def _convolution(A, B, lo, hi, k):
 
 
 @njit(cache=True)
-def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+def _equal_powers_split(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+    """:func:`_coefficients_equal_powers` with the Cauchy sums in four partial sums (K > DEGREE_SPLIT)."""
+    _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, True)
+
+
+@njit(cache=True)
+def _equal_powers_single(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
+    """:func:`_coefficients_equal_powers` with one accumulator per sum: low degrees (most of the hot path), where the
+    split's setup costs more than it saves (and its code alone, compiled into the same kernel, cost the
+    deep regime ~8% of its instructions: a separate kernel per variant)."""
+    _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, False)
+
+
+@njit(cache=True, inline="always")
+def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, split):
     """:func:`taylor_coefficients` for a = b > 0 (Hertz among them): one power, one product.
 
     Then r xi |xi|^a + 2 m xi' |xi|^b = (r xi + 2 m xi') Q with Q = |xi|^b, so for k >= 1
@@ -261,12 +300,12 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
     b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
     (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
     Same coefficients up to the rounding of the sums (a few ulps times the degree).  Y is a
-    work array (length > K).
+    work array (length > K).  ``split`` (a constant of each caller): the Cauchy sums in four
+    partial sums (:func:`_convolution`) or in one.
     """
     H2 = H * H
     Q[0] = q0
     half = b == 0.5
-    split = K > DEGREE_SHORT  # the hot path's low degrees: one sum (the split's setup costs more there)
     inv_2q0 = 0.5 / q0
     for k in range(0, K - 1):
         if k >= 1:
@@ -301,7 +340,7 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y):
 
 @njit(cache=True)
 def cauchy_radius(w0, v0, p0, q0, c0, r, m, law):
-    """(r_c, Rz, Rp) of the majorant argument in the module docstring.
+    """(r_c, Rz, Rp) of the majorant argument in the module docstring (its first radius: cheap).
 
     Within |t| < r_c: |xi(t) - xi0| <= Rz and |xi'(t) - v0| <= Rp.
     """
@@ -324,6 +363,82 @@ def cauchy_radius(w0, v0, p0, q0, c0, r, m, law):
     lim_z = Rz / (av + Rp) if av + Rp > 0.0 else math.inf
     lim_p = Rp / M if M > 0.0 else math.inf
     return min(lim_z, lim_p) / MARGIN, Rz, Rp
+
+
+@njit(cache=True)
+def series_radius(w0, v0, p0, q0, c0, r, m, law):
+    """(r_c, Rz, Rp) as :func:`cauchy_radius`, the larger of the module docstring's two radii.
+
+    The comparison radius (eq. (C)) is tried where the first is limited by the force (|v0| r_c <
+    0.9 Rz), not by the speed (there it gains little).
+    """
+    radius, Rz, Rp = cauchy_radius(w0, v0, p0, q0, c0, r, m, law)
+    av = abs(v0)
+    if not (Rz > 0.0 and w0 > 0.0 and av * radius < 0.9 * Rz):
+        return radius, Rz, Rp
+    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
+        A0, L, M1 = c0 + r * w0, r, 2.0 * m
+    else:  # L = r (a+1) (1.95 w0)^a, M1 = 2 m (1.95 w0)^b
+        A0, L, M1 = c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + DISC) * w0), 2.0 * m * law[L_GROW_B] * q0
+    A0 *= MARGIN
+    L *= MARGIN
+    M1 *= MARGIN
+    s, e = comparison_radius(Rz, av, A0, L, M1)
+    if s > radius and M1 * s < 0.5:
+        return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN  # e'(s) - |v0| (docstring)
+    return radius, Rz, Rp
+
+
+@njit(cache=True)
+def excursion(s, av, A0, L, M1):
+    """(upper bound of e(s), e'(s) of the truncated sum) for eq. (C) of the module docstring.
+
+    e = sum_k t_k with t_1 = av s, t_2 = (A0 + M1 av) s^2/2, t_{j+2} = (L s^2 t_j + M1 s (j+1) t_{j+1})
+    / ((j+1)(j+2)) >= 0, so t_{j+2} <= rho_j max(t_j, t_{j+1}) with rho_j = (L s^2 + M1 s (j+1)) /
+    ((j+1)(j+2)) decreasing in j: the terms after t_{j+1}, t_{j+2} sum to <= 2 c rho / (1 - rho),
+    c = max(t_{j+1}, t_{j+2}), rho = rho_{j+1} < 1.  Summed until that tail is below 2^-60 of the sum
+    (all terms >= 0: relative rounding ~ the number of terms in ulps, covered by MARGIN); inf if not
+    within EXCURSION_TERMS terms.  e'(s) (for Newton's method only) omits its tail.
+    """
+    Ls2 = L * s * s
+    M1s = M1 * s
+    t0 = av * s
+    t1 = 0.5 * (A0 + M1 * av) * s * s
+    e = t0 + t1
+    de = t0 + 2.0 * t1  # s e'(s)
+    for j in range(1, EXCURSION_TERMS):
+        t2 = (Ls2 * t0 + M1s * (j + 1) * t1) * (INV[j + 1] * INV[j + 2])
+        e += t2
+        de += (j + 2) * t2
+        rho = (Ls2 + M1s * (j + 2)) * (INV[j + 2] * INV[j + 3])
+        if rho < 0.5:
+            tail = 2.0 * max(t1, t2) * rho / (1.0 - rho)
+            if tail <= 2.0**-60 * e:
+                return (e + tail) * MARGIN, de / s
+        t0, t1 = t1, t2
+    return math.inf, de / s
+
+
+@njit(cache=True)
+def comparison_radius(Rz, av, A0, L, M1):
+    """(s, e(s)): the largest s found with e(s) <= Rz for eq. (C), (0, 0) if none.
+
+    Newton's method on e(s) = 0.98 Rz from s = acosh(1 + L Rz / A0) / sqrt(L), the root for
+    av = M1 = 0 (larger: e grows faster with av, M1 > 0); e is increasing and convex, so the
+    iterates decrease to the root, and the first with e(s) <= Rz is taken.
+    """
+    s = math.acosh(1.0 + L * Rz / A0) / math.sqrt(L) if A0 > 0.0 else Rz / av
+    for _ in range(12):
+        e, de = excursion(s, av, A0, L, M1)
+        if e <= Rz:
+            return s, e
+        if not (de > 0.0 and e < math.inf):
+            s *= 0.5
+            continue
+        s += (0.98 * Rz - e) / de
+        if not s > 0.0:
+            break
+    return 0.0, 0.0
 
 
 @njit(cache=True)
