@@ -26,6 +26,7 @@ from bounce import power_sticky
 from bounce.flight import FOUND, NEVER
 from bounce.power_events import run_power_events
 from bounce.power_series import DEGREE_LONG, L_XI_EQ, law_array
+from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
 #: crossing the rest length xi = 0 (both of tests/test_power_sticky.py), the onset g0.1_mu1 of
@@ -66,22 +67,8 @@ def sticky_costs(gamma, mu, xi, v, calls, repeats):
         for _ in range(calls):
             power_sticky.sticky_phase(v, eta, np.inf, law, *work, False)
         times.append((time.process_time() - t0) / calls)
-    counts = {"taylor_coefficients": 0, "tail_bounds": 0}
-    originals = {name: getattr(power_sticky, name) for name in counts}
-
-    def counting(name):
-        def wrapper(*args):
-            counts[name] += 1
-            return originals[name](*args)
-        return wrapper
-
-    try:
-        for name in counts:
-            setattr(power_sticky, name, counting(name))
+    with counting(power_sticky, ("taylor_coefficients", "tail_bounds")) as counts:
         again = power_sticky.sticky_phase.py_func(v, eta, np.inf, law, *work, False)
-    finally:
-        for name, f in originals.items():
-            setattr(power_sticky, name, f)
     assert again[:2] == (status, duration), (again, status, duration)
     return float(np.median(times)), counts["taylor_coefficients"], counts["tail_bounds"], status, duration
 

@@ -31,6 +31,7 @@ from bounce import power_flight as PF
 from bounce.methods import heyoka_taylor as HT
 from bounce.power_series import DEGREE_LONG, law_array
 from bounce.springs import SPRING_LAWS
+from call_counts import counting
 
 GAMMA = MU = 0.01
 WINDOWS = (0, 10, 100, 1_000, 10_000, 20_000, 100_000)
@@ -42,25 +43,8 @@ def counted_flight(start, law, work) -> tuple[bool, collections.Counter]:
     x, u, v, eta = start
     if x == 0.0 and u > 0.0 and PF.short_flight(u, v, eta, law, *work)[0] != PF.HANDOVER:
         return True, collections.Counter()
-    counts = collections.Counter()
-    originals = {name: getattr(PF, name) for name in COUNTED}
-    minimum = PF._minimum
-
-    def counting(name):
-        def wrapper(*args):
-            counts[name] += 1
-            return originals[name](*args)
-        return wrapper
-
-    try:
-        for name in COUNTED:
-            setattr(PF, name, counting(name))
-        PF._minimum = minimum.py_func  # compiled against the module's _evaluate: run it as Python too
+    with counting(PF, COUNTED, {"_minimum": PF._minimum.py_func}) as counts:  # _minimum: compiled against _evaluate
         PF.first_contact.py_func(x, u, v, eta, np.inf, law, *work, False)
-    finally:
-        for name, f in originals.items():
-            setattr(PF, name, f)
-        PF._minimum = minimum
     return False, counts
 
 
