@@ -315,7 +315,7 @@ def T_xi(mu: float) -> float:
     """Half the proper period of the spring, pi/sqrt(1 - mu^2) (eq. ``char-times``), the double impact's duration.
 
     inf for mu >= 1: the over-damped spring never swings back, the contact never ends (the limit mu -> 1-).
-    omega within 1 ulp for every mu < 1 (:func:`bounce.oscillator.natural_frequency`).
+    omega within 1.25 ulp for every mu < 1 (:func:`bounce.oscillator.natural_frequency`).
     """
     return math.pi / natural_frequency(mu) if mu < 1.0 else math.inf
 
