@@ -140,6 +140,7 @@ from .power_series import (
     integer_power,
     L_ANALYTIC_B,
     cauchy_radius,
+    comparison_radius_once,
     curvature,
     displacement,
     powers_at,
@@ -168,6 +169,8 @@ MAX_EVALS = 400_000
 TOL_ROOT = 2.0**-60
 #: largest theta = |sigma - sigma0| / r of a root-variable series (ROOT_DEGREE 64: theta^65 / (1 - theta) ~ 2^-60).
 THETA_ROOT = 0.53
+#: the hot path's window over its predicted flight (short_flight): 1/16 above the cubic model's root.
+WINDOW = 17.0 / 16.0
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
 #: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
@@ -727,20 +730,42 @@ def _short_degree(theta, Rz, Rp, tol_x, tol_v):
 
 
 @njit(cache=True)
+def _cubic_root(u, v, w0, sigma, p0, q0, xidd0, law):
+    """t_p: the positive root of the cubic model u t + A t^2/2 + J t^3/6 of x from the floor, 0 if none.
+
+    A = x''(0) = -gamma - xi''(0), J = x'''(0) = -xi'''(0) with, from eq. (S) (|xi|^a = p0/w0,
+    |xi|^(b-1) = q0/w0), xi''' = -rho (a+1) |xi|^a xi' - 2 mu (xi'' |xi|^b + b sigma |xi|^(b-1) xi'^2).
+    The root of u + A t/2 + J t^2/6 in the cancellation-free form 2u / (sqrt(A^2/4 - 2Ju/3) - A/2)
+    needs A < 0 and a positive discriminant.  Only a predictor (:func:`short_flight`).
+    """
+    A = -law[L_GAMMA] - xidd0
+    xiddd = (-(law[L_RHO] * law[L_AP1] * p0 * v + 2.0 * law[L_MU] * law[L_B] * sigma * q0 * v * v) / w0
+             - 2.0 * law[L_MU] * xidd0 * q0)
+    disc = 0.25 * A * A + (2.0 / 3.0) * xiddd * u
+    if not (A < 0.0 and disc > 0.0):
+        return 0.0
+    return 2.0 * u / (math.sqrt(disc) - 0.5 * A)
+
+
+@njit(cache=True)
 def short_flight(u, v, eta, law, X, P, Q):
     """First contact of a flight from the floor (x = 0, x' = u > 0) as one series step.
 
     Returns what :func:`first_contact` returns, or status HANDOVER when the flight
     is not one short step (then the caller runs :func:`first_contact`).
 
-    Window T = 2.5 u / (gamma + |xi''(0)|) (over-estimates the flight, whose
-    curvature is ~ gamma + xi''); degree K <= DEGREE_SHORT the least for which the tail bounds on
-    [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the cheap first radius of
-    :func:`bounce.power_series.cauchy_radius`, else with the comparison radius of
-    :func:`bounce.power_series.series_radius` (~2x near the spring's turning point, where these
-    flights start: it keeps the Hertz drop's flights from impact ~3e3 on in this path, K <= 24).  Fast path: the root t_p of
-    the cubic model, then Newton steps dt = -x/x', each certified as in
-    :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
+    Predictor: the root t_p of the cubic model of x (:func:`_cubic_root`, from eq. (S) at the
+    start; for the Hertz drop of benchmarks/bench_power.py the flight is within 0.3% of it from
+    impact 3e3 on, 2.4% at impact 1e3).  Window T = WINDOW t_p (no larger than
+    2.5 u / (gamma + |xi''(0)|), which is also the window when the model has no root): the window
+    only says where the series is valid and evaluated, so a root beyond it is a HANDOVER and a
+    poor predictor costs time, never an impact.  Degree K <= DEGREE_SHORT the least for which the
+    tail bounds on [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the larger of the cheap
+    first radius of :func:`bounce.power_series.cauchy_radius` and the comparison radius from one
+    evaluation of eq. (C) (:func:`bounce.power_series.comparison_radius_once`; ~2x the first near
+    the spring's turning point, where these flights start), else with
+    :func:`bounce.power_series.series_radius`.  From t_p, Newton steps dt = -x/x', each certified
+    as in :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
     B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
     from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
     (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x.  Otherwise the safe march.
@@ -753,41 +778,44 @@ def short_flight(u, v, eta, law, X, P, Q):
     if w0 == 0.0:
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     p0, q0 = powers_at(w0, law)
-    sigma_p0 = p0 if xi0 > 0.0 else -p0
-    xidd0 = -rho * sigma_p0 - 2.0 * mu * v * q0
+    sigma = 1.0 if xi0 > 0.0 else -1.0
+    xidd0 = -rho * sigma * p0 - 2.0 * mu * v * q0
     T = 2.5 * u / (gamma + abs(xidd0))
+    t_p = _cubic_root(u, v, w0, sigma, p0, q0, xidd0, law)
+    if t_p > 0.0:
+        T = min(T, WINDOW * t_p)
     tol_x = TOL * u * T
     tol_v = TOL * u
     radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+    r_once, Rz_once, Rp_once = comparison_radius_once(w0, v, p0, q0, 0.0, rho, mu, law)
+    if r_once > radius:
+        radius, Rz, Rp = r_once, Rz_once, Rp_once
     K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
-    if K == 0:  # the cheap radius first; the comparison radius is ~2x near a turning point of the spring
+    if K == 0:  # e.g. the linear law, for which comparison_radius_once is not formed
         radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
         if K == 0:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    taylor_coefficients(xi0, w0, v, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
+    taylor_coefficients(xi0, w0, v, p0, q0, rho * sigma * p0, rho, mu, law, 1.0, K, X, P, Q)
     B = _curvature_bound_near(w0, v, p0, q0, law)
-    A0 = -gamma - 2.0 * X[2]
-    disc = 0.25 * A0 * A0 - 4.0 * X[3] * u  # (2/3) J0 u with J0 = -6 X_3
-    if A0 < 0.0 and disc > 0.0:
-        t = 2.0 * u / (math.sqrt(disc) - 0.5 * A0)
-        for _ in range(4):
-            if not 0.0 < t <= T:
-                break
-            xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
-            if not vs < 0.0:
-                break
-            dt = -xs / vs
-            if B * dt * dt <= 8.0 * EPS * scale:
-                if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
-                    # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
-                    D2, D3 = curvature(t, 1.0, K, X)
-                    D += Dp * dt
-                    Dp += D2 * dt
-                    t += dt
-                    return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
-                break
-            t += dt
+    t = t_p
+    for _ in range(4):
+        if not 0.0 < t <= T:
+            break
+        xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
+        if not vs < 0.0:
+            break
+        dt = -xs / vs
+        if B * dt * dt <= 8.0 * EPS * scale:
+            if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
+                # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
+                D2, D3 = curvature(t, 1.0, K, X)
+                D += Dp * dt
+                Dp += D2 * dt
+                t += dt
+                return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
+            break
+        t += dt
     # general march from the first safe step
     s = 2.0 * u / B
     if s > T:

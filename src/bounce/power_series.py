@@ -96,7 +96,7 @@ DISC = 0.95
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
-DEGREE_SHORT = 24
+DEGREE_SHORT = 32
 #: from this degree up the Hertz recurrence's Cauchy sums run in four partial sums (below, one is faster).
 DEGREE_SPLIT = 12
 #: relative margin on computed bounds (covers their own rounding).
@@ -376,17 +376,75 @@ def series_radius(w0, v0, p0, q0, c0, r, m, law):
     av = abs(v0)
     if not (Rz > 0.0 and w0 > 0.0 and av * radius < 0.9 * Rz):
         return radius, Rz, Rp
-    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
-        A0, L, M1 = c0 + r * w0, r, 2.0 * m
-    else:  # L = r (a+1) (1.95 w0)^a, M1 = 2 m (1.95 w0)^b
-        A0, L, M1 = c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + DISC) * w0), 2.0 * m * law[L_GROW_B] * q0
-    A0 *= MARGIN
-    L *= MARGIN
-    M1 *= MARGIN
+    A0, L, M1 = comparison_constants(w0, p0, q0, c0, r, m, law)
     s, e = comparison_radius(Rz, av, A0, L, M1)
     if s > radius and M1 * s < 0.5:
         return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN  # e'(s) - |v0| (docstring)
     return radius, Rz, Rp
+
+
+@njit(cache=True)
+def comparison_constants(w0, p0, q0, c0, r, m, law):
+    """(A0, L, M1) of eq. (C) at |xi0| = w0 > 0 (module docstring), each times MARGIN."""
+    if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
+        A0, L, M1 = c0 + r * w0, r, 2.0 * m
+    else:  # L = r (a+1) (1.95 w0)^a, M1 = 2 m (1.95 w0)^b
+        A0, L, M1 = c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + DISC) * w0), 2.0 * m * law[L_GROW_B] * q0
+    return A0 * MARGIN, L * MARGIN, M1 * MARGIN
+
+
+@njit(cache=True)
+def excursion_closed(s, av, A0, L, M1):
+    """An upper bound of e(s) of eq. (C) from its closed form (constant coefficients), for L > 0.
+
+    With D = sqrt(M1^2 + 4L), l1 = (M1 + D)/2 > 0 and l2 = -L/l1 < 0 the roots of l^2 - M1 l - L,
+    e = c1 expm1(l1 s) + c2 expm1(l2 s), c1 = (av - l2 A0/L)/D >= 0, c2 = (l1 A0/L - av)/D (e(0) = 0,
+    e'(0) = av, e'' = A0 + L e + M1 e').  Each of the ~20 operations rounds by <= 1 ulp (expm1 of
+    libm included); c1 is a sum of non-negative terms, and the cancellation in c2 (av ~ l1 A0/L)
+    leaves an absolute error <= 16 eps c1 <= 64 eps |t1| when l1 s >= k s >= 1/4 (expm1 >= 1/4), so
+    for k s >= 1/4 (k = sqrt(L), the only use) the computed sum is within 256 eps (|t1| + |t2|) of
+    e, and that is added.  The terms cancel at most like sinh(k s) against cosh(k s) - 1, a factor
+    <= 4/(k s) <= 16: the bound is within 1e-12 relative of e.  (:func:`excursion`'s series costs
+    ~25 passes of a loop.)
+    """
+    D = math.sqrt(M1 * M1 + 4.0 * L)
+    l1 = 0.5 * (M1 + D)
+    l2 = -L / l1
+    c1 = (av - l2 * A0 / L) / D
+    c2 = (l1 * A0 / L - av) / D
+    t1 = c1 * math.expm1(l1 * s)
+    t2 = c2 * math.expm1(l2 * s)
+    return (t1 + t2) + 256.0 * 2.0**-52 * (abs(t1) + abs(t2))
+
+
+@njit(cache=True)
+def comparison_radius_once(w0, v0, p0, q0, c0, r, m, law):
+    """(r_c, Rz, Rp) of eq. (C) from one evaluation of e in closed form (no Newton loop); r_c = 0 if that fails.
+
+    For M1 = 0, (C) has the closed form e_0(s) = (A0/L)(cosh(k s) - 1) + (|v0|/k) sinh(k s), k = sqrt(L),
+    and e_0(s) = Rz is a quadratic in z = exp(k s): s_0 = log(z)/k.  e >= e_0 (M1 >= 0, non-negative
+    coefficients), so the root of e lies below s_0; s = s_0 / (1 + M1 s_0) is tried (for Hertz near
+    its equilibrium e(s) ~ 0.97 Rz, s within 0.5% of :func:`comparison_radius`'s).  The guess is only a
+    guess: the radius is rigorous because e(s) <= Rz is checked with the upper bound of
+    :func:`excursion_closed` (k s >= 1/4, else not formed), and then (s, Rz, Rp) are those of the module
+    docstring (M1 s < 1/2).  Formed for the singular laws (Rz = DISC |xi0|), not for a = b = 0.
+    """
+    Rz = DISC * w0
+    av = abs(v0)
+    if not (w0 > 0.0 and law[L_ANALYTIC_A] + law[L_ANALYTIC_B] < 2.0):
+        return 0.0, Rz, 0.0
+    A0, L, M1 = comparison_constants(w0, p0, q0, c0, r, m, law)
+    k = math.sqrt(L)
+    alpha, beta = A0 / L, av / k
+    z = ((alpha + Rz) + math.sqrt((alpha + Rz) * (alpha + Rz) - (alpha - beta) * (alpha + beta))) / (alpha + beta)
+    s0 = math.log(z) / k
+    s = s0 / (1.0 + M1 * s0)
+    if not (k * s >= 0.25 and M1 * s < 0.5):
+        return 0.0, Rz, 0.0
+    e = excursion_closed(s, av, A0, L, M1) * MARGIN
+    if e <= Rz:
+        return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN
+    return 0.0, Rz, 0.0
 
 
 @njit(cache=True)
