@@ -791,11 +791,11 @@ def short_flight(u, v, eta, law, X, P, Q):
     if r_once > radius:
         radius, Rz, Rp = r_once, Rz_once, Rp_once
     K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
-    if K == 0:  # e.g. the linear law, for which comparison_radius_once is not formed
+    if K == 0 and r_once == 0.0:  # not formed (e.g. the linear law); else within 1% of series_radius's
         radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
-        if K == 0:
-            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    if K == 0:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     taylor_coefficients(xi0, w0, v, p0, q0, rho * sigma * p0, rho, mu, law, 1.0, K, X, P, Q)
     B = _curvature_bound_near(w0, v, p0, q0, law)
     t = t_p

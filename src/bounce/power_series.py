@@ -395,7 +395,7 @@ def comparison_constants(w0, p0, q0, c0, r, m, law):
 
 @njit(cache=True)
 def excursion_closed(s, av, A0, L, M1):
-    """An upper bound of e(s) of eq. (C) from its closed form (constant coefficients), for L > 0.
+    """(upper bound of e(s), e'(s)) of eq. (C) from its closed form (constant coefficients), for L > 0.
 
     With D = sqrt(M1^2 + 4L), l1 = (M1 + D)/2 > 0 and l2 = -L/l1 < 0 the roots of l^2 - M1 l - L,
     e = c1 expm1(l1 s) + c2 expm1(l2 s), c1 = (av - l2 A0/L)/D >= 0, c2 = (l1 A0/L - av)/D (e(0) = 0,
@@ -405,16 +405,18 @@ def excursion_closed(s, av, A0, L, M1):
     for k s >= 1/4 (k = sqrt(L), the only use) the computed sum is within 256 eps (|t1| + |t2|) of
     e, and that is added.  The terms cancel at most like sinh(k s) against cosh(k s) - 1, a factor
     <= 4/(k s) <= 16: the bound is within 1e-12 relative of e.  (:func:`excursion`'s series costs
-    ~25 passes of a loop.)
+    ~25 passes of a loop.)  e'(s) (for Newton's method only) carries no such bound.
     """
     D = math.sqrt(M1 * M1 + 4.0 * L)
     l1 = 0.5 * (M1 + D)
     l2 = -L / l1
     c1 = (av - l2 * A0 / L) / D
     c2 = (l1 * A0 / L - av) / D
-    t1 = c1 * math.expm1(l1 * s)
-    t2 = c2 * math.expm1(l2 * s)
-    return (t1 + t2) + 256.0 * 2.0**-52 * (abs(t1) + abs(t2))
+    g1 = math.expm1(l1 * s)
+    g2 = math.expm1(l2 * s)
+    t1 = c1 * g1
+    t2 = c2 * g2
+    return (t1 + t2) + 256.0 * 2.0**-52 * (abs(t1) + abs(t2)), c1 * l1 * (g1 + 1.0) + c2 * l2 * (g2 + 1.0)
 
 
 @njit(cache=True)
@@ -423,8 +425,9 @@ def comparison_radius_once(w0, v0, p0, q0, c0, r, m, law):
 
     For M1 = 0, (C) has the closed form e_0(s) = (A0/L)(cosh(k s) - 1) + (|v0|/k) sinh(k s), k = sqrt(L),
     and e_0(s) = Rz is a quadratic in z = exp(k s): s_0 = log(z)/k.  e >= e_0 (M1 >= 0, non-negative
-    coefficients), so the root of e lies below s_0; s = s_0 / (1 + M1 s_0) is tried (for Hertz near
-    its equilibrium e(s) ~ 0.97 Rz, s within 0.5% of :func:`comparison_radius`'s).  The guess is only a
+    coefficients), so the root of e lies below s_0, and one Newton step on the closed form of e
+    (:func:`excursion_closed`) towards e = 0.99 Rz gives s (e is convex: s stays above that root; for
+    Hertz near its equilibrium s is within 0.1% of :func:`comparison_radius`'s).  The guess is only a
     guess: the radius is rigorous because e(s) <= Rz is checked with the upper bound of
     :func:`excursion_closed` (k s >= 1/4, else not formed), and then (s, Rz, Rp) are those of the module
     docstring (M1 s < 1/2).  Formed for the singular laws (Rz = DISC |xi0|), not for a = b = 0.
@@ -437,11 +440,13 @@ def comparison_radius_once(w0, v0, p0, q0, c0, r, m, law):
     k = math.sqrt(L)
     alpha, beta = A0 / L, av / k
     z = ((alpha + Rz) + math.sqrt((alpha + Rz) * (alpha + Rz) - (alpha - beta) * (alpha + beta))) / (alpha + beta)
-    s0 = math.log(z) / k
-    s = s0 / (1.0 + M1 * s0)
+    s = math.log(z) / k
+    e, de = excursion_closed(s, av, A0, L, M1)
+    if de > 0.0:
+        s -= (e - 0.99 * Rz) / de
     if not (k * s >= 0.25 and M1 * s < 0.5):
         return 0.0, Rz, 0.0
-    e = excursion_closed(s, av, A0, L, M1) * MARGIN
+    e = excursion_closed(s, av, A0, L, M1)[0] * MARGIN
     if e <= Rz:
         return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN
     return 0.0, Rz, 0.0

@@ -1,0 +1,148 @@
+"""The hot path of the power-law spring (power_flight.short_flight): a flight from the floor as one
+series step, with its root certified or a HANDOVER to the general stepper.
+
+* flights of the Hertz drop of benchmarks/bench_power.py that take the hot path (impacts 2.6e3 ..
+  2e4: window from the cubic model, comparison radius from one closed-form evaluation of eq. (C),
+  degree up to DEGREE_SHORT) against the mpmath reference (tests/power_reference.py) to 1e-14;
+* property: from states near equilibrium (three laws, a window of speeds that spans the switch
+  between the hot path and the general one), short_flight either hands over or returns the root and
+  post-impact state of first_contact (the safe march, which cannot skip a root) to rounding;
+* a predictor far off (a cubic model with no root, a window far too short) costs a HANDOVER, never a
+  wrong root;
+* eq. (C) in closed form (power_series.excursion_closed) bounds its solution from above to 1e-12, and
+  the one-evaluation radius (comparison_radius_once) is within 2% of the Newton one and respected by
+  the Taylor coefficients (Cauchy's estimate).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from mpmath import mp, mpf
+
+import power_reference as PR
+from bounce import Parameters, State
+from bounce import power_flight as PF
+from bounce.flight import FOUND
+from bounce.power_series import (DEGREE_LONG, L_XI_EQ, comparison_constants, comparison_radius_once, excursion, excursion_closed,
+                                 law_array, powers_at, series_radius, taylor_coefficients)
+from bounce.power_events import simulate_power
+from bounce.springs.power import PowerSpring
+
+GAMMA = MU = 0.01
+HERTZ = PowerSpring(1.0, 0.5, 0.5)
+REL = 1e-14
+
+
+@pytest.fixture(scope="module")
+def drop():
+    params = Parameters(GAMMA, MU, HERTZ)
+    return simulate_power(params, HERTZ, State.from_psi_xi(6.0, 0.0, params.xi_eq, 0.0), max_events=20_000)
+
+
+def work():
+    return [np.empty(DEGREE_LONG + 2) for _ in range(3)]
+
+
+@pytest.mark.parametrize("n", [2_600, 3_000, 5_000, 10_000, 19_999])
+def test_hot_path_flights_of_the_drop_match_reference(drop, n):
+    law = law_array(1.0, 0.5, 0.5, MU, GAMMA)
+    u, a, eta = float(drop.xdot[n - 1]), float(drop.xidot[n - 1]), float(drop.eta[n - 1])
+    status, tau, v, _, eta_t, xid_t, _, _ = PF.short_flight(u, a, eta, law, *work())
+    assert status == FOUND  # the flight takes the hot path
+    assert tau == drop.tau[n]  # and the event loop took it too
+    with mp.workdps(60):
+        xi0 = mpf(float(law[L_XI_EQ])) + mpf(eta)
+    ref = PR.reference_first_impact(GAMMA, MU, 1.0, 0.5, 0.5, 0.0, u, a, xi0)
+    t_ref = float(ref["tau"])
+    assert abs(tau - t_ref) <= REL * t_ref, (tau, t_ref)
+    # the post-impact state of the event loop: x' and xi' exchanged (eq. collision-rule)
+    assert abs(drop.xdot[n] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (drop.xdot[n], ref["xdot"])
+    assert abs(drop.xidot[n] - float(ref["xidot"])) <= REL * (abs(u) + abs(a) + GAMMA * t_ref), (drop.xidot[n],)
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(float(law[L_XI_EQ])))
+    assert abs(drop.eta[n] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (drop.eta[n], eta_ref)
+
+
+LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4": (1.5, 0.25, 0.25), "a1_b0": (2.0, 1.0, 0.0)}
+
+
+@settings(max_examples=150, deadline=None)
+@given(name=st.sampled_from(sorted(LAWS)), log_u=st.floats(-5.0, -1.5), v_rel=st.floats(-1.0, 1.0),
+       eta_rel=st.floats(-1.0, 1.0), gamma=st.sampled_from([0.01, 0.1]), mu=st.sampled_from([0.01, 0.3]))
+def test_hot_path_is_first_contact_or_hands_over(name, log_u, v_rel, eta_rel, gamma, mu):
+    """Speeds 1e-5 .. 3e-2 with |xi'| and |eta| up to u and 10 u / sqrt(f'(xi_eq)) (the spring's
+    swing for that energy): both sides of the hot path's limits."""
+    rho, a, b = LAWS[name]
+    law = law_array(rho, a, b, mu, gamma)
+    u = 10.0**log_u
+    omega = math.sqrt(rho * (a + 1.0) * abs(float(law[L_XI_EQ])) ** a)
+    v, eta = v_rel * u, eta_rel * 10.0 * u / omega
+    hot = PF.short_flight(u, v, eta, law, *work())
+    if hot[0] == PF.HANDOVER:
+        return
+    general = PF.first_contact(0.0, u, v, eta, np.inf, law, *work())
+    assert hot[0] == general[0] == FOUND
+    tau_h, tau_g = hot[1], general[1]
+    assert abs(tau_h - tau_g) <= 4e-15 * tau_g, (tau_h, tau_g)
+    assert abs(hot[2] - general[2]) <= 4e-15 * (u + gamma * tau_g), (hot[2], general[2])  # x'
+    assert abs(hot[4] - general[4]) <= 4e-15 * (abs(float(law[L_XI_EQ])) + abs(eta)), (hot[4], general[4])  # eta
+    assert abs(hot[5] - general[5]) <= 4e-15 * (abs(v) + u + gamma * tau_g), (hot[5], general[5])  # xi'
+
+
+def test_poor_predictor_hands_over_not_a_wrong_root(monkeypatch):
+    """A window far too short (WINDOW 1/2: the root lies beyond it) must give HANDOVER; the
+    kernel is run as Python (py_func) with the module constant patched."""
+    law = law_array(1.0, 0.5, 0.5, MU, GAMMA)
+    u, v, eta = 1.4e-3, -7e-4, 5e-5
+    assert PF.short_flight(u, v, eta, law, *work())[0] == FOUND
+    monkeypatch.setattr(PF, "WINDOW", 0.5)
+    assert PF.short_flight.py_func(u, v, eta, law, *work())[0] == PF.HANDOVER
+
+
+@pytest.mark.parametrize("av, A0, L, M1", [(0.0, 0.01, 0.45, 0.006), (7e-4, 0.01, 0.45, 0.006),
+                                           (0.02, 0.01, 0.3, 0.0), (1.0, 1e-3, 5.0, 0.2), (0.1, 0.05, 0.1, 0.5)])
+@pytest.mark.parametrize("s", [0.6, 1.0, 2.5, 6.0])
+def test_excursion_closed_bounds_eq_C(av, A0, L, M1, s):
+    if math.sqrt(L) * s < 0.25:
+        pytest.skip("formed only for k s >= 1/4")
+    with mp.workdps(50):
+        av_, A0_, L_, M1_, s_ = (mpf(x) for x in (av, A0, L, M1, s))
+        D = mp.sqrt(M1_**2 + 4 * L_)
+        l1, l2 = (M1_ + D) / 2, (M1_ - D) / 2
+        c1, c2 = (av_ - l2 * A0_ / L_) / D, (l1 * A0_ / L_ - av_) / D
+        exact = c1 * mp.expm1(l1 * s_) + c2 * mp.expm1(l2 * s_)
+        assert abs(c1 * l1 + c2 * l2 - av_) < mpf(10)**-40  # e'(0) = av
+        mp_de = c1 * l1 * mp.exp(l1 * s_) + c2 * l2 * mp.exp(l2 * s_)
+        exact = float(exact)
+    e, de = excursion_closed(s, av, A0, L, M1)
+    assert exact <= e <= exact * (1 + 1e-12), (e, exact)
+    assert de == pytest.approx(float(mp_de), rel=1e-12)
+    series, _ = excursion(s, av, A0, L, M1)  # the series bound of the same e (MARGIN 1e-12 on top)
+    if series < math.inf:
+        assert abs(e - series) <= 2e-12 * series
+
+
+@pytest.mark.parametrize("name", ["hertz", "a1/4", "a1_b0"])
+@pytest.mark.parametrize("xi0, v0", [(-0.0464, 0.0), (-0.0464, 7e-4), (-0.05, -0.01), (0.05, 0.01), (-0.3, 0.02)])
+def test_one_evaluation_radius(name, xi0, v0):
+    rho, a, b = LAWS[name]
+    mu = 0.05
+    law = law_array(rho, a, b, mu, 0.01)
+    w0 = abs(xi0)
+    p0, q0 = powers_at(w0, law)
+    r, Rz, Rp = comparison_radius_once(w0, v0, p0, q0, 0.0, rho, mu, law)
+    newton = series_radius(w0, v0, p0, q0, 0.0, rho, mu, law)[0]
+    if r == 0.0:
+        return  # not formed (the guess failed its check): the caller falls back to series_radius
+    assert excursion(r, abs(v0), *comparison_constants(w0, p0, q0, 0.0, rho, mu, law))[0] <= Rz  # e(r) <= Rz
+    assert r >= 0.99 * newton, (r, newton)  # as good as the Newton loop (which stops at e <= Rz from 0.98 Rz)
+    K = DEGREE_LONG
+    X, P, Q = (np.empty(K + 2) for _ in range(3))
+    taylor_coefficients(xi0, w0, v0, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, r, K, X, P, Q)
+    for k in range(1, K + 1):  # Cauchy's estimate, X_k in units of r (rounding of the recurrence: 1e-9)
+        assert abs(X[k]) <= Rz * (1 + 1e-9), (k, X[k], Rz)
+        assert k == 1 or k * abs(X[k]) <= Rp * r * (1 + 1e-9), (k, X[k], Rp * r)
