@@ -3,7 +3,8 @@ series step, with its root certified or a HANDOVER to the general stepper.
 
 * flights of the Hertz drop of benchmarks/bench_power.py that take the hot path (impacts 2.6e3 ..
   2e4: window from the cubic model, comparison radius from one closed-form evaluation of eq. (C),
-  degree up to DEGREE_SHORT) against the mpmath reference (tests/power_reference.py) to 1e-14;
+  degree up to DEGREE_SHORT; impacts 1e3 .. 2e3: two or three steps) against the mpmath reference
+  (tests/power_reference.py) to 1e-14;
 * property: from states near equilibrium (three laws, a window of speeds that spans the switch
   between the hot path and the general one), short_flight either hands over or returns the root and
   post-impact state of first_contact (the safe march, which cannot skip a root) to rounding;
@@ -67,6 +68,29 @@ def test_hot_path_flights_of_the_drop_match_reference(drop, n):
     assert abs(drop.eta[n] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (drop.eta[n], eta_ref)
 
 
+@pytest.mark.parametrize("n", [1_000, 1_500, 2_000])
+def test_split_flights_of_the_drop_match_reference(drop, n, monkeypatch):
+    """Flights two or three times the one-step limit: short_flight takes them in 2 or 3 steps
+    (_split_flight; the kernel run as Python to see the call), equal to the compiled event loop's,
+    against the reference to 1e-14."""
+    law = law_array(1.0, 0.5, 0.5, MU, GAMMA)
+    u, a, eta = float(drop.xdot[n - 1]), float(drop.xidot[n - 1]), float(drop.eta[n - 1])
+    split, kernel = [], PF._split_flight
+    monkeypatch.setattr(PF, "_split_flight", lambda *args: split.append(kernel(*args)) or split[-1])
+    status, tau = PF.short_flight.py_func(u, a, eta, law, *work())[:2]
+    assert len(split) == 1 and status == FOUND and tau == drop.tau[n]
+    with mp.workdps(60):
+        xi0 = mpf(float(law[L_XI_EQ])) + mpf(eta)
+    ref = PR.reference_first_impact(GAMMA, MU, 1.0, 0.5, 0.5, 0.0, u, a, xi0)
+    t_ref = float(ref["tau"])
+    assert abs(tau - t_ref) <= REL * t_ref, (tau, t_ref)
+    assert abs(drop.xdot[n] - float(ref["xdot"])) <= REL * abs(float(ref["xdot"])), (drop.xdot[n], ref["xdot"])
+    assert abs(drop.xidot[n] - float(ref["xidot"])) <= REL * (abs(u) + abs(a) + GAMMA * t_ref), (drop.xidot[n],)
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(float(law[L_XI_EQ])))
+    assert abs(drop.eta[n] - eta_ref) <= REL * (abs(eta_ref) + abs(eta_ref - eta)), (drop.eta[n], eta_ref)
+
+
 LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4": (1.5, 0.25, 0.25), "a1_b0": (2.0, 1.0, 0.0)}
 
 
@@ -76,6 +100,19 @@ LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4": (1.5, 0.25, 0.25), "a1_b0": (2.0, 1.0,
 def test_hot_path_is_first_contact_or_hands_over(name, log_u, v_rel, eta_rel, gamma, mu):
     """Speeds 1e-5 .. 3e-2 with |xi'| and |eta| up to u and 10 u / sqrt(f'(xi_eq)) (the spring's
     swing for that energy): both sides of the hot path's limits."""
+    assert_hot_path_agrees(name, log_u, v_rel, eta_rel, gamma, mu)
+
+
+@settings(max_examples=150, deadline=None)
+@given(name=st.sampled_from(sorted(LAWS)), log_u=st.floats(-2.5, -1.7), v_rel=st.floats(-1.0, 1.0),
+       eta_rel=st.floats(-1.0, 1.0), mu=st.sampled_from([0.01, 0.05]))
+def test_split_flights_are_first_contact_or_hand_over(name, log_u, v_rel, eta_rel, mu):
+    """gamma = 0.01, speeds 3e-3 .. 2e-2: flights around the one-step limit, ~1/3 of them in 2 or 3
+    steps (_split_flight), the others in one step or handed over."""
+    assert_hot_path_agrees(name, log_u, v_rel, eta_rel, 0.01, mu)
+
+
+def assert_hot_path_agrees(name, log_u, v_rel, eta_rel, gamma, mu):
     rho, a, b = LAWS[name]
     law = law_array(rho, a, b, mu, gamma)
     u = 10.0**log_u

@@ -93,7 +93,13 @@ and the crossing is not taken when xi = 0 itself comes too late, nor when a tail
 Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
-within rounding of it).
+within rounding of it); its window is 17/16 of the predicted flight (a root beyond it is a
+HANDOVER to :func:`first_contact`, never a skipped impact), its radius the larger of the cheap
+one and the comparison radius of eq. (C) from one closed-form evaluation.  A flight a few times
+longer is two or three such steps (:func:`_split_flight`: the steps before the last end before
+2u/B, where the curvature bound alone keeps x > 0, so only the last needs a root certificate).
+For the Hertz drop of benchmarks/bench_power.py this takes the flights from impact ~1e3 on
+(before: ~5e3), with ~0.7 of the instructions per impact there (impacts 1e3 .. 5e3).
 
 Long flights: the error bound.  Each step is exact to rounding, and the state is carried in
 hi + lo parts; what remains is the float64 evaluation of each step (the rounded coefficients and
@@ -730,6 +736,92 @@ def _short_degree(theta, Rz, Rp, tol_x, tol_v):
 
 
 @njit(cache=True)
+def _hot_radius(w0, v, p0, q0, law):
+    """(r_c, Rz, Rp) of a hot-path step: the larger of the cheap first radius
+    (:func:`bounce.power_series.cauchy_radius`) and the one-evaluation comparison radius
+    (:func:`bounce.power_series.comparison_radius_once`); the latter's r_c (0 if not formed)."""
+    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
+    r_once, Rz_once, Rp_once = comparison_radius_once(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
+    if r_once > radius:
+        return r_once, Rz_once, Rp_once, r_once
+    return radius, Rz, Rp, r_once
+
+
+@njit(cache=True)
+def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
+    """The hot path's flight over [0, T] in m = 2 or 3 equal series steps (:func:`short_flight`), or HANDOVER.
+
+    Used where one step over the window is too long for the series (T/r_c > 1/4 or degree above
+    DEGREE_SHORT), i.e. flights a few times longer than the deep regime's (Hertz drop: impacts ~1e3 ..
+    2.5e3).  m is the least for which the first step, of length h = T/m, has a degree (its radius
+    (radius, Rz, Rp) is the one-step's); each step's series is taken at the state the previous one
+    ends in and has its own radius and degree, its tail below 2^-55 u T (x) and 2^-55 u (x') as the
+    one step's (<= 3 of them: the state is exact to 3 2^-55 u T, below its rounding).
+
+    No root is skipped.  The steps before the last end before 2u/B (else HANDOVER), where the parabola
+    x >= u s - B s^2/2 of the flight's curvature bound B keeps x > 0: they need no evaluation but their
+    end.  In the last step Newton steps from the cubic model's root t_p, certified exactly as in
+    :func:`short_flight` with t the time from the flight's start: (i) B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|)
+    (the parabola from 0 and the one backwards from t cover (0, t)), (ii) B dt^2 <= 8 eps scale;
+    otherwise HANDOVER.
+    """
+    gamma = law[L_GAMMA]
+    rho = law[L_RHO]
+    mu = law[L_MU]
+    tol_x = TOL * u * T
+    tol_v = TOL * u
+    m = 2
+    while _short_degree(T / (m * radius), Rz, Rp, tol_x, tol_v) == 0:
+        m += 1
+        if m > 3:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    h = T / m
+    if not (m - 1) * h < 2.0 * u / B:
+        return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    x, w, vj, ej, tj = 0.0, u, v, eta, 0.0
+    for j in range(m):
+        if j > 0:
+            xi0 = law[L_XI_EQ] + ej
+            w0 = abs(xi0)
+            if w0 == 0.0:
+                return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            p0, q0 = powers_at(w0, law)
+            radius, Rz, Rp, _ = _hot_radius(w0, vj, p0, q0, law)
+        else:
+            xi0 = law[L_XI_EQ] + eta
+            w0 = abs(xi0)
+            p0, q0 = powers_at(w0, law)
+        K = _short_degree(h / radius, Rz, Rp, tol_x, tol_v)
+        if K == 0:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        taylor_coefficients(xi0, w0, vj, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
+        if j < m - 1:  # x > 0 on this step (it ends before 2u/B): its end state only
+            x, w, _, D, Dp = _evaluate(h, x, 0.0, w, 0.0, gamma, 1.0, K, X)
+            ej += vj * h + D
+            vj += Dp
+            tj += h
+            continue
+        s = t_p - tj
+        for _ in range(6):
+            if not 0.0 < s <= T - tj:
+                break
+            xs, vs, scale, D, Dp = _evaluate(s, x, 0.0, w, 0.0, gamma, 1.0, K, X)
+            if not vs < 0.0:
+                break
+            dt = -xs / vs
+            if B * dt * dt <= 8.0 * EPS * scale:
+                if B * ((tj + s) - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
+                    D += Dp * dt  # first-order update to s + dt (the neglected terms are O(dt^2), below rounding)
+                    Dp += curvature(s, 1.0, K, X)[0] * dt
+                    s += dt
+                    return _contact(tj, 0.0, s, w - gamma * s - Dp, scale, ej, 0.0, vj, 0.0, gamma, D, Dp, 1.0, K, X,
+                                    (0.0, u, v, eta))
+                break
+            s += dt
+    return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
 def _cubic_root(u, v, w0, sigma, p0, q0, xidd0, law):
     """t_p: the positive root of the cubic model u t + A t^2/2 + J t^3/6 of x from the floor, 0 if none.
 
@@ -786,18 +878,17 @@ def short_flight(u, v, eta, law, X, P, Q):
         T = min(T, WINDOW * t_p)
     tol_x = TOL * u * T
     tol_v = TOL * u
-    radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
-    r_once, Rz_once, Rp_once = comparison_radius_once(w0, v, p0, q0, 0.0, rho, mu, law)
-    if r_once > radius:
-        radius, Rz, Rp = r_once, Rz_once, Rp_once
+    radius, Rz, Rp, r_once = _hot_radius(w0, v, p0, q0, law)
     K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
     if K == 0 and r_once == 0.0:  # not formed (e.g. the linear law); else within 1% of series_radius's
         radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
+    B = _curvature_bound_near(w0, v, p0, q0, law)
     if K == 0:
+        if t_p > 0.0:
+            return _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp)
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     taylor_coefficients(xi0, w0, v, p0, q0, rho * sigma * p0, rho, mu, law, 1.0, K, X, P, Q)
-    B = _curvature_bound_near(w0, v, p0, q0, law)
     t = t_p
     for _ in range(4):
         if not 0.0 < t <= T:
