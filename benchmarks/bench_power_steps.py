@@ -6,7 +6,8 @@ The drop of benchmarks/bench_power.py (Hertz, gamma = mu = 0.01, psi(0) = 6, xi(
 trajectory over N impacts (default 2e4), and from up to M post-impact states per window of
 bench_power's WINDOWS (evenly spread), one flight each:
 
-* bounce: whether the hot path (:func:`bounce.power_flight.short_flight`) takes it, else the series
+* bounce: whether the hot path (:func:`bounce.power_flight.short_flight`) takes it (``split``: of those,
+  in two or three steps, :func:`bounce.power_flight._split_flight`), else the series
   steps (calls of taylor_coefficients), root-variable crossing attempts (_root_crossing calls) and
   evaluations of eq. (P) per flight, counted by running first_contact's Python function (``py_func``)
   with counting wrappers; the CPU time per impact of bounce on the window (median of 3 runs);
@@ -38,14 +39,16 @@ WINDOWS = (0, 10, 100, 1_000, 10_000, 20_000, 100_000)
 COUNTED = ("taylor_coefficients", "_root_crossing", "_evaluate")
 
 
-def counted_flight(start, law, work) -> tuple[bool, collections.Counter]:
-    """(hot path?, counts of COUNTED) for one flight from ``start`` = (x, u, xi', eta)."""
+def counted_flight(start, law, work) -> tuple[bool, bool, collections.Counter]:
+    """(hot path?, in 2 or 3 steps?, counts of COUNTED) for one flight from ``start`` = (x, u, xi', eta)."""
     x, u, v, eta = start
-    if x == 0.0 and u > 0.0 and PF.short_flight(u, v, eta, law, *work)[0] != PF.HANDOVER:
-        return True, collections.Counter()
+    if x == 0.0 and u > 0.0:
+        with counting(PF, ("_split_flight",)) as split:
+            if PF.short_flight.py_func(u, v, eta, law, *work)[0] != PF.HANDOVER:
+                return True, split["_split_flight"] > 0, collections.Counter()
     with counting(PF, COUNTED, {"_minimum": PF._minimum.py_func}) as counts:  # _minimum: compiled against _evaluate
         PF.first_contact.py_func(x, u, v, eta, np.inf, law, *work, False)
-    return False, counts
+    return False, False, counts
 
 
 def cpu_per_impact(fn, n, repeats=3) -> float:
@@ -72,16 +75,17 @@ def main() -> None:
     edges = [w for w in WINDOWS if w < args.impacts] + [args.impacts]
     print(f"Hertz drop, gamma = mu = {GAMMA}; {args.per_window} flights per window "
           "(bounce: per flight not in the hot path; heyoka: per flight)")
-    print(f"{'impacts':>15s} {'hot':>5s} {'series':>7s} {'root try':>8s} {'evals':>6s} {'us/impact':>9s} | "
+    print(f"{'impacts':>15s} {'hot':>5s} {'split':>5s} {'series':>7s} {'root try':>8s} {'evals':>6s} {'us/impact':>9s} | "
           f"{'heyoka steps':>12s} {'us/impact':>9s} {'ratio':>6s}")
     for lo, hi in zip(edges[:-1], edges[1:]):
         idx = np.unique(np.linspace(lo, hi - 1, min(args.per_window, hi - lo)).astype(int))
-        hot, total, long_flights, h_steps = 0, collections.Counter(), 0, []
+        hot, split, total, long_flights, h_steps = 0, 0, collections.Counter(), 0, []
         for k in idx:
             start = ((d0.x, d0.xdot, d0.xidot, d0.eta) if k == 0 else
                      (0.0, float(tr.xdot[k - 1]), float(tr.xidot[k - 1]), float(tr.eta[k - 1])))
-            is_hot, counts = counted_flight(start, law, work)
+            is_hot, is_split, counts = counted_flight(start, law, work)
             hot += is_hot
+            split += is_split
             long_flights += not is_hot
             total.update(counts)
             r = HT.run(params, Deviations(*start), {}, max_events=1)
@@ -91,7 +95,7 @@ def main() -> None:
         b_us = 1e6 * cpu_per_impact(lambda: simulate(params, first, max_events=hi - lo), hi - lo)
         h_us = 1e6 * cpu_per_impact(lambda: HT.run(params, first, {}, max_events=hi - lo), hi - lo, repeats=1)
         per = {name: total[name] / max(long_flights, 1) for name in COUNTED}
-        print(f"[{lo:6d}, {hi:6d}) {hot:2d}/{len(idx):2d} {per['taylor_coefficients']:7.1f} "
+        print(f"[{lo:6d}, {hi:6d}) {hot:2d}/{len(idx):2d} {split:5d} {per['taylor_coefficients']:7.1f} "
               f"{per['_root_crossing']:8.1f} {per['_evaluate']:6.1f} {b_us:9.2f} | {np.nanmean(h_steps):12.1f} "
               f"{h_us:9.2f} {h_us / b_us:6.1f}")
 

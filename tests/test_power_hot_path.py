@@ -176,7 +176,9 @@ def test_one_evaluation_radius(name, xi0, v0):
     if r == 0.0:
         return  # not formed (the guess failed its check): the caller falls back to series_radius
     assert excursion(r, abs(v0), *comparison_constants(w0, p0, q0, 0.0, rho, mu, law))[0] <= Rz  # e(r) <= Rz
-    assert r >= 0.99 * newton, (r, newton)  # as good as the Newton loop (which stops at e <= Rz from 0.98 Rz)
+    # one or two closed-form evaluations instead of the Newton loop's ~5 series (power_series.
+    # comparison_radius_once): the same radius to 3% (the guess s_0 / (1 + M1 s_0) where M1 s_0 <= 1/32)
+    assert r >= 0.97 * newton, (r, newton)
     K = DEGREE_LONG
     X, P, Q = (np.empty(K + 2) for _ in range(3))
     taylor_coefficients(xi0, w0, v0, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, r, K, X, P, Q)

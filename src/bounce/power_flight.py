@@ -177,6 +177,9 @@ TOL_ROOT = 2.0**-60
 THETA_ROOT = 0.53
 #: the hot path's window over its predicted flight (short_flight): 1/16 above the cubic model's root.
 WINDOW = 17.0 / 16.0
+#: the hot path forms the comparison radius of eq. (C) only where the cheap radius needs a degree above this
+#: (its one evaluation costs about two degrees of the series: :func:`_hot_degree`).
+ONCE_ABOVE = 12
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
 #: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
@@ -720,8 +723,8 @@ def _contact(t_hi, t_lo, s, vs, scale, eta, el, v, vl, gamma, D, Dp, H, K, X, st
 
 
 @njit(cache=True)
-def _short_degree(theta, Rz, Rp, tol_x, tol_v):
-    """The least degree K <= DEGREE_SHORT whose tail bounds (:func:`bounce.power_series.tail_bounds`) at
+def _short_degree(theta, Rz, Rp, tol_x, tol_v, cap):
+    """The least degree K <= cap whose tail bounds (:func:`bounce.power_series.tail_bounds`) at
     theta <= 1/4 are below tol_x (x) and tol_v (x'); 0 if there is none."""
     if not theta <= 0.25:
         return 0
@@ -730,21 +733,36 @@ def _short_degree(theta, Rz, Rp, tol_x, tol_v):
     while Rz * tk * theta > tol_x or Rp * tk > tol_v:
         K += 1
         tk *= theta
-        if K > DEGREE_SHORT:
+        if K > cap:
             return 0
     return K
 
 
 @njit(cache=True)
-def _hot_radius(w0, v, p0, q0, law):
-    """(r_c, Rz, Rp) of a hot-path step: the larger of the cheap first radius
-    (:func:`bounce.power_series.cauchy_radius`) and the one-evaluation comparison radius
-    (:func:`bounce.power_series.comparison_radius_once`); the latter's r_c (0 if not formed)."""
+def _hot_degree(h, w0, v, p0, q0, tol_x, tol_v, law):
+    """(K, r_c, Rz, Rp, formed) of a hot-path step of length h (:func:`_short_degree`; K = 0: none,
+    and then r_c is the larger radius).
+
+    The cheap first radius (:func:`bounce.power_series.cauchy_radius`) first; where it gives no
+    degree <= ONCE_ABOVE, the comparison radius from one evaluation of eq. (C)
+    (:func:`bounce.power_series.comparison_radius_once`, ~2x near the spring's turning point; it
+    costs about as much as ~2 degrees of the series, so deep in the asymptotic regime, where the
+    degree is low, it is not formed).  ``formed``: whether that radius was formed.
+    """
     radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
+    theta = h / radius
+    K = _short_degree(theta, Rz, Rp, tol_x, tol_v, ONCE_ABOVE)
+    if K > 0:
+        return K, radius, Rz, Rp, False
     r_once, Rz_once, Rp_once = comparison_radius_once(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
-    if r_once > radius:
-        return r_once, Rz_once, Rp_once, r_once
-    return radius, Rz, Rp, r_once
+    if not r_once > radius:
+        return _short_degree(theta, Rz, Rp, tol_x, tol_v, DEGREE_SHORT), radius, Rz, Rp, r_once > 0.0
+    K_once = _short_degree(h / r_once, Rz_once, Rp_once, tol_x, tol_v, DEGREE_SHORT)
+    if K_once == 0:
+        K = _short_degree(theta, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
+        if K > 0:
+            return K, radius, Rz, Rp, True
+    return K_once, r_once, Rz_once, Rp_once, True  # K_once = 0: the larger radius, for _split_flight's steps
 
 
 @njit(cache=True)
@@ -771,7 +789,7 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
     tol_x = TOL * u * T
     tol_v = TOL * u
     m = 2
-    while _short_degree(T / (m * radius), Rz, Rp, tol_x, tol_v) == 0:
+    while _short_degree(T / (m * radius), Rz, Rp, tol_x, tol_v, DEGREE_SHORT) == 0:
         m += 1
         if m > 3:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -786,12 +804,12 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
             if w0 == 0.0:
                 return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             p0, q0 = powers_at(w0, law)
-            radius, Rz, Rp, _ = _hot_radius(w0, vj, p0, q0, law)
+            K, radius, Rz, Rp, _ = _hot_degree(h, w0, vj, p0, q0, tol_x, tol_v, law)
         else:
             xi0 = law[L_XI_EQ] + eta
             w0 = abs(xi0)
             p0, q0 = powers_at(w0, law)
-        K = _short_degree(h / radius, Rz, Rp, tol_x, tol_v)
+            K = _short_degree(h / radius, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
         if K == 0:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         taylor_coefficients(xi0, w0, vj, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
@@ -852,11 +870,10 @@ def short_flight(u, v, eta, law, X, P, Q):
     2.5 u / (gamma + |xi''(0)|), which is also the window when the model has no root): the window
     only says where the series is valid and evaluated, so a root beyond it is a HANDOVER and a
     poor predictor costs time, never an impact.  Degree K <= DEGREE_SHORT the least for which the
-    tail bounds on [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the larger of the cheap
-    first radius of :func:`bounce.power_series.cauchy_radius` and the comparison radius from one
-    evaluation of eq. (C) (:func:`bounce.power_series.comparison_radius_once`; ~2x the first near
-    the spring's turning point, where these flights start), else with
-    :func:`bounce.power_series.series_radius`.  From t_p, Newton steps dt = -x/x', each certified
+    tail bounds on [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the cheap first radius
+    or the comparison radius from one evaluation of eq. (C) (:func:`_hot_degree`), or where that
+    is not formed (the linear law) with :func:`bounce.power_series.series_radius`; else two or
+    three steps (:func:`_split_flight`) or HANDOVER.  From t_p, Newton steps dt = -x/x', each certified
     as in :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
     B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
     from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
@@ -878,11 +895,10 @@ def short_flight(u, v, eta, law, X, P, Q):
         T = min(T, WINDOW * t_p)
     tol_x = TOL * u * T
     tol_v = TOL * u
-    radius, Rz, Rp, r_once = _hot_radius(w0, v, p0, q0, law)
-    K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
-    if K == 0 and r_once == 0.0:  # not formed (e.g. the linear law); else within 1% of series_radius's
+    K, radius, Rz, Rp, formed = _hot_degree(T, w0, v, p0, q0, tol_x, tol_v, law)
+    if K == 0 and not formed:  # e.g. the linear law; where formed, within 1% of series_radius's
         radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
-        K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v)
+        K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
     B = _curvature_bound_near(w0, v, p0, q0, law)
     if K == 0:
         if t_p > 0.0:
