@@ -739,6 +739,21 @@ def _short_degree(theta, Rz, Rp, tol_x, tol_v, cap):
 
 
 @njit(cache=True)
+def _root_update(dt, vs, gamma, D, Dp, D2, D3):
+    """(d, D, D') at the root t + d from the Newton step dt = -x/x' at t (x'(t) = vs; D and its first
+    three derivatives at t).
+
+    Second order: x(t + d) = x + vs d + x'' d^2/2 + O(d^3) with x'' = -gamma - D'' vanishes at
+    d = dt (1 - x'' dt / (2 vs)), and D, D' are carried there by their Taylor polynomials of
+    degree 2.  The hot path accepts dt with B dt^2 <= 8 eps scale, so a first-order update (d = dt)
+    would leave x up to 4 eps scale off the floor (one-step errors ~3x larger deep in the asymptotic
+    regime); the neglected terms here are O(B dt^3/|vs|), below rounding.
+    """
+    d = dt * (1.0 - 0.5 * (-gamma - D2) * dt / vs)
+    return d, D + d * (Dp + 0.5 * D2 * d), Dp + d * (D2 + 0.5 * D3 * d)
+
+
+@njit(cache=True)
 def _hot_degree(h, w0, v, p0, q0, tol_x, tol_v, law):
     """(K, r_c, Rz, Rp, formed) of a hot-path step of length h (:func:`_short_degree`; K = 0: none,
     and then r_c is the larger radius).
@@ -829,9 +844,9 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
             dt = -xs / vs
             if B * dt * dt <= 8.0 * EPS * scale:
                 if B * ((tj + s) - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
-                    D += Dp * dt  # first-order update to s + dt (the neglected terms are O(dt^2), below rounding)
-                    Dp += curvature(s, 1.0, K, X)[0] * dt
-                    s += dt
+                    D2, D3 = curvature(s, 1.0, K, X)
+                    d, D, Dp = _root_update(dt, vs, gamma, D, Dp, D2, D3)
+                    s += d
                     return _contact(tj, 0.0, s, w - gamma * s - Dp, scale, ej, 0.0, vj, 0.0, gamma, D, Dp, 1.0, K, X,
                                     (0.0, u, v, eta))
                 break
@@ -915,11 +930,9 @@ def short_flight(u, v, eta, law, X, P, Q):
         dt = -xs / vs
         if B * dt * dt <= 8.0 * EPS * scale:
             if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
-                # first-order update to t + dt (the neglected terms are O(dt^2), below rounding)
                 D2, D3 = curvature(t, 1.0, K, X)
-                D += Dp * dt
-                Dp += D2 * dt
-                t += dt
+                d, D, Dp = _root_update(dt, vs, gamma, D, Dp, D2, D3)
+                t += d
                 return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
             break
         t += dt
