@@ -94,8 +94,9 @@ Hot path (:func:`short_flight`): a flight from the floor deep in the asymptotic
 regime is one low-degree step, solved like :func:`bounce.short_flight.short_flight`
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
 within rounding of it); its window is 17/16 of the predicted flight (a root beyond it is a
-HANDOVER to :func:`first_contact`, never a skipped impact), its radius the larger of the cheap
-one and the comparison radius of eq. (C) from one closed-form evaluation.  A flight a few times
+HANDOVER to :func:`first_contact`, never a skipped impact), its radius the cheap one or, where
+that needs a degree above ONCE_ABOVE, the comparison radius of eq. (C) from one closed-form
+evaluation, and the root's last Newton step is applied to second order.  A flight a few times
 longer is two or three such steps (:func:`_split_flight`: the steps before the last end before
 2u/B, where the curvature bound alone keeps x > 0, so only the last needs a root certificate).
 For the Hertz drop of benchmarks/bench_power.py this takes the flights from impact ~1e3 on
@@ -892,7 +893,8 @@ def short_flight(u, v, eta, law, X, P, Q):
     as in :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
     B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
     from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
-    (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x.  Otherwise the safe march.
+    (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x; the root is then t + dt to second
+    order (:func:`_root_update`).  Otherwise the safe march.
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]

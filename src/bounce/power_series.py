@@ -57,7 +57,10 @@ r_c = s with e(s) <= Rz the solution is holomorphic on |t| < r_c with |xi - xi0|
 |xi' - v0| <= Rp = s (A0 + L e(s) + M1 |v0|) / (1 - M1 s) (e'(s) = |v0| + int_0^s e'' with
 e, e' increasing; needs M1 s < 1): the same tail bounds hold with this (r_c, Rz, Rp).
 e has non-negative Taylor coefficients (no cancellation), summed with a rigorous tail.
-:func:`series_radius` returns the larger of the two radii.
+:func:`series_radius` returns the larger of the two radii.  (C) has constant coefficients, so e
+also has a closed form (:func:`excursion_closed`, an upper bound with its rounding added), which
+:func:`comparison_radius_once` evaluates at one or two guessed s instead of the Newton loop of
+:func:`comparison_radius` (the hot path of :mod:`bounce.power_flight`).
 
 The coefficients themselves carry the usual relative rounding of a recurrence
 (a few ulps times the degree); they are not part of the bound.
