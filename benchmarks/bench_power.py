@@ -13,7 +13,11 @@ negative, tolerance 2^-52).  Scenes:
 Measured per scene, in this run:
 
 1. impacts/s, median (min, max) of ``--repeats`` runs in process CPU time, both solvers over the
-   same ``--heyoka-events`` impacts from the same start (the ratio is taken there), and bounce alone
+   same ``--heyoka-events`` impacts from the same start (the ratio is taken there; heyoka in its
+   fastest use, :func:`bounce.methods.heyoka_taylor.impacts`: one propagation with the impact rule in
+   its event callback, all impacts found; heyoka through
+   ``heyoka_taylor.run``, which returns to Python after every flight for its failure checks, is
+   printed beside it: ~10 us more per impact, more than heyoka's own work deep), and bounce alone
    over ``--events`` impacts (after a warm-up call: no JIT compile in any timing); and along the
    drop by windows of impact indices ``WINDOWS`` (both from bounce's exact state at the window's
    start): the transient (long flights through the rest length xi = 0) and the asymptotic regime
@@ -129,7 +133,23 @@ def bounce_timed(params, initial, events):
     return len(tr.t), time.process_time() - start
 
 
-def heyoka_timed(params, initial, events):
+def heyoka_timed(params, initial, bounce_t):
+    """(impacts, CPU s) of heyoka's fastest use (:func:`bounce.methods.heyoka_taylor.impacts`: one
+    propagation, the impact rule in its event callback) over as many impacts as bounce finds from the
+    same start by ``bounce_t[-1]``.  It must find them all by 1.5 times that: after a skipped impact x
+    stays below the floor (psi falls like a parabola, |xi| is bounded) and no event follows, so a
+    timing of fewer impacts stops the benchmark.  (Where the trajectories part by more than DIVERGE_REL,
+    the transient's sensitivity to heyoka's one-step errors, is reported by the scene rows.)"""
+    n = len(bounce_t)
+    t, _, _, _, cpu = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0)
+    if len(t) < n:
+        raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
+    return n, cpu
+
+
+def heyoka_run_timed(params, initial, events):
+    """(impacts, CPU s) of :func:`bounce.methods.heyoka_taylor.run`: heyoka with bounce's per-flight failure
+    checks (flight bound, upward crossings; a return to Python after every flight)."""
     r = HT.run(params, initial, {}, max_events=events)
     return len(r.t), r.cpu_time
 
@@ -193,7 +213,10 @@ def scene_row(name, params, scene, initial, args) -> dict:
         "stop": tr.stop_reason, "all_impacts": bool((tr.kind == IMPACT).all()), "impacts": len(tr.t)}
     row["same_impacts"] = n_same
     if n_same > 0:  # same start, same impacts
-        row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, n_same), args.repeats)
+        bounce_t = simulate(params, initial, max_events=n_same).t
+        row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, bounce_t), args.repeats)
+        row["heyoka"]["impacts_per_s_checked"] = rates(lambda: heyoka_run_timed(params, initial, n_same),
+                                                       args.repeats)
         row["bounce"]["impacts_per_s_same"] = rates(lambda: bounce_timed(params, initial, n_same), args.repeats)
         row["ratio"] = row["bounce"]["impacts_per_s_same"][0] / row["heyoka"]["impacts_per_s"][0]
         n = min(len(first.t), len(tr.t))
@@ -218,7 +241,8 @@ def drop_windows(params, drop, repeats, last=WINDOWS[-1]) -> list:
                "bounce": rates(lambda: bounce_timed(params, start, hi - lo), repeats),
                "heyoka_failure": r.failure}
         if not r.failure:
-            row["heyoka"] = rates(lambda: heyoka_timed(params, start, hi - lo), repeats)
+            bounce_t = simulate(params, start, max_events=hi - lo).t
+            row["heyoka"] = rates(lambda: heyoka_timed(params, start, bounce_t), repeats)
             row["ratio"] = row["bounce"][0] / row["heyoka"][0]
         out.append(row)
     return out
@@ -333,6 +357,10 @@ def print_report(res: dict, notes: list) -> None:
             print(f"{scene:11s} {row['same_impacts']:7d} {_r(b.get('impacts_per_s_same')):33s} "
                   f"{_r(h.get('impacts_per_s')):33s} {row.get('ratio', math.nan):6.1f} "
                   f"{_e(o['bounce_max']):>10s} {_e(o['heyoka_max']):>10s}  {out}")
+        for scene, row in r["rows"].items():
+            if row["heyoka"].get("impacts_per_s_checked"):
+                print(f"  {scene}: heyoka through bounce.methods.heyoka_taylor.run (per-flight failure checks, "
+                      f"not timed above): {_r(row['heyoka']['impacts_per_s_checked'])} impacts/s")
         for key in ("drop_windows", "paper_drop_windows"):
             if r.get(key):
                 print(f"{key.replace('_windows', '')} by windows of impact index (both from bounce's exact state "

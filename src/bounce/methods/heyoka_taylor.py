@@ -42,9 +42,13 @@ heyoka (~2.4 s to import) loads at its first use (:func:`bounce._registry.lazy_i
 does not load it.
 
 Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, Hertz a = b = 1/2, gamma = mu = 0.01, one
-core of a shared machine, load ~5, medians of 5; numbers in results/timing/bench_power.json): ~6e4
-impacts/s in the asymptotic regime (bounce 2.6e6, 44x), 3e3-3e4 in the drop's first 1000 impacts, whose
-long flights cross the rest length xi = 0 (there bounce's series flights are 4-10x slower than heyoka);
+core of a shared machine, load 1.8-3.2, medians of 5; numbers in results/timing/bench_power.json), heyoka
+in its fastest use (:func:`impacts`: one propagation, the impact rule in the event callback): 2.5e5
+impacts/s in the asymptotic regime (bounce 2.6e6, 10.5x), 3e3-3e5 in the drop's first 1e4 impacts, whose
+long flights cross the rest length xi = 0 (there bounce is 0.9-1.8x heyoka: both take Taylor steps of
+similar cost, bounce about half as many; over the first 2e4 impacts 1.8x); through :func:`run`, which
+returns to Python after every flight for the failure checks below, heyoka does 5.5e4 impacts/s (the
+checks cost ~13 us per impact, three times heyoka's own work deep);
 one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
@@ -125,6 +129,75 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
                             t_events=[floor], nt_events=[rise], pars=[0.0] * 4, tol=tol,
                             high_accuracy=high_accuracy)
     return ta, upward  # heyoka deep-copies callbacks, but a function deep-copies to itself: same list
+
+
+class _ImpactRule:
+    """Terminal-event callback of :func:`impacts`: applies the impact rule in place and records the
+    impact, so heyoka continues the integration without returning to Python between impacts; it
+    stops the propagation (returns False) once ``limit`` impacts are recorded."""
+
+    def __init__(self):
+        self.limit = 0
+        self.t, self.u, self.v, self.eta = [], [], [], []
+
+    def __call__(self, ta, d_sgn):
+        s = ta.state
+        u, v = s[1], s[2]
+        s[0] = 0.0
+        s[1] = -u
+        s[2] = u + v
+        self.t.append(ta.time)
+        self.u.append(-u)
+        self.v.append(u + v)
+        self.eta.append(s[3])
+        return len(self.t) < self.limit
+
+
+@functools.cache
+def _callback_integrator(a: float, b: float, tol: float, cooldown: float | None, high_accuracy: bool):
+    """As :func:`integrator`, with the impact rule in the floor event's callback and no upward event."""
+    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
+    gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
+    xi = xi_eq + eta
+    fa = None if a == 0.0 else (xi * xi) ** (a / 2.0)
+    fb = None if b == 0.0 else (xi * xi) ** (b / 2.0)
+    xi2 = -(rho * xi if fa is None else rho * xi * fa) - (2.0 * mu * v if fb is None else 2.0 * mu * v * fb)
+    kw = {} if cooldown is None else {"cooldown": float(cooldown)}
+    floor = hy.t_event(x, callback=_ImpactRule(), direction=hy.event_direction.negative, **kw)
+    ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
+                            t_events=[floor], pars=[0.0] * 4, tol=tol, high_accuracy=high_accuracy)
+    return ta, ta.t_events[0].callback  # heyoka deep-copies the callback: this is the copy it calls
+
+
+def impacts(params, initial, max_events, t_end, setting=None):
+    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu)``.
+
+    One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
+    (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
+    returns to Python after every flight for its failure checks (flight bound, upward crossings),
+    which cost ~13 us per impact, three times heyoka's own work in the asymptotic regime (measured:
+    18 against 4.2-4.9 us per Hertz impact from impact 1e3 on, ``python benchmarks/bench_power.py``).
+    Here nothing is checked: a skipped impact shows as fewer than ``max_events`` impacts by
+    ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
+    which the caller compares.  ``cpu`` is the process time of the propagation alone.
+    """
+    cfg = _setting(setting)
+    rho, pa, pb, xi_eq = spring_law(params, cfg)
+    dev = initial.deviations(params)
+    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
+    ta, rule = _callback_integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]))
+    ta.pars[:] = [params.gamma, params.mu, rho, xi_eq]
+    ta.time = 0.0
+    ta.reset_cooldowns()
+    rule.limit = 1  # _start's own event at t = 0 (a restart from the floor) must not count
+    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
+    for column in (rule.t, rule.u, rule.v, rule.eta):
+        column.clear()
+    rule.limit = max_events
+    start = time.process_time()
+    ta.propagate_until(t_end)
+    cpu = time.process_time() - start
+    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu
 
 
 def _setting(setting):
