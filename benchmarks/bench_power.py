@@ -16,9 +16,8 @@ Measured per scene, in this run:
    same ``--heyoka-events`` impacts from the same start (the ratio is taken there; heyoka in its
    fastest use, :func:`bounce.methods.heyoka_taylor.impacts`: one propagation with the impact rule in
    its event callback, all impacts found; heyoka through
-   ``heyoka_taylor.run``, which returns to Python after every flight for its failure checks, is
-   printed beside it: ~13 us more per impact, three times heyoka's own work deep; and heyoka at its
-   most accurate setting ``ACCURATE``, tol 1e-18 with high_accuracy), and bounce alone
+   ``heyoka_taylor.run``, with its failure checks, is printed beside it: ~2 us more per impact deep;
+   and heyoka at its most accurate setting ``ACCURATE``, tol 1e-18 with high_accuracy), and bounce alone
    over ``--events`` impacts (after a warm-up call: no JIT compile in any timing); and along the
    drop by windows of impact indices ``WINDOWS`` (both from bounce's exact state at the window's
    start): the transient (long flights through the rest length xi = 0) and the asymptotic regime
@@ -151,8 +150,8 @@ def heyoka_timed(params, initial, bounce_t, setting=None):
 
 
 def heyoka_run_timed(params, initial, events):
-    """(impacts, CPU s) of :func:`bounce.methods.heyoka_taylor.run`: heyoka with bounce's per-flight failure
-    checks (flight bound, upward crossings; a return to Python after every flight)."""
+    """(impacts, CPU s) of :func:`bounce.methods.heyoka_taylor.run`: heyoka with the method's failure checks
+    (upward crossings, zero-length flights, the flight bound between propagations)."""
     r = HT.run(params, initial, {}, max_events=events)
     return len(r.t), r.cpu_time
 
