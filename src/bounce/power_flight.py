@@ -704,7 +704,8 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
 
 @njit(cache=True)
 def _product_error(a, b, p):
-    """a b - p exactly for p = fl(a b) (Dekker's product), 0 where the split could overflow (|p| >= 1e290)."""
+    """a b - p for p = fl(a b) by Dekker's product: exact unless a partial product underflows (|a b| below
+    ~1e-280: then off by < 1e-300), 0 where the split could overflow (|p| >= 1e290)."""
     if not abs(p) < 1e290:
         return 0.0
     c = 134217729.0 * a
