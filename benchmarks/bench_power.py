@@ -13,7 +13,11 @@ negative, tolerance 2^-52).  Scenes:
 Measured per scene, in this run:
 
 1. impacts/s, median (min, max) of ``--repeats`` runs in process CPU time, both solvers over the
-   same ``--heyoka-events`` impacts from the same start (the ratio is taken there), and bounce alone
+   same ``--heyoka-events`` impacts from the same start (the ratio is taken there; heyoka in its
+   fastest use, :func:`bounce.methods.heyoka_taylor.impacts`: one propagation with the impact rule in
+   its event callback, all impacts found; heyoka through
+   ``heyoka_taylor.run``, with its failure checks, is printed beside it: ~2 us more per impact deep;
+   and heyoka at its most accurate setting ``ACCURATE``, tol 1e-18 with high_accuracy), and bounce alone
    over ``--events`` impacts (after a warm-up call: no JIT compile in any timing); and along the
    drop by windows of impact indices ``WINDOWS`` (both from bounce's exact state at the window's
    start): the transient (long flights through the rest length xi = 0) and the asymptotic regime
@@ -22,7 +26,7 @@ Measured per scene, in this run:
    of it, each solver does one flight from the same float64 state; the largest relative error of
    tau, x', xi' after the impact and eta (relative to max(|eta|, 1e-6 |xi_eq|): eta is xi - xi_eq,
    a difference whose float64 floor is ~eps |xi_eq|) against the independent 50-digit mpmath
-   reference ``tests/power_reference.py`` started from exactly that state;
+   reference ``tests/power_reference.py`` started from exactly that state (heyoka also at ``ACCURATE``);
 3. skipped impacts, bounce (``--long N``, default 1e7): the drop continued in chunks of 1e6 impacts
    (each chunk from the last post-impact state: bounded memory), every event must be an impact
    and every chunk complete; the first flight of every chunk is checked against the mpmath
@@ -83,6 +87,8 @@ ONE_STEP = (0, 9, 99, 999)
 CHUNK = 1_000_000
 DIVERGE_REL = 1e-9
 SKIP_REL = 1e-12
+#: heyoka's most accurate setting tried (item 2): one-step errors ~1e-15 on the drop's flights through xi = 0
+ACCURATE = {"tol": 1e-18, "high_accuracy": True}
 
 
 def pin_to_one_core() -> str:
@@ -129,7 +135,23 @@ def bounce_timed(params, initial, events):
     return len(tr.t), time.process_time() - start
 
 
-def heyoka_timed(params, initial, events):
+def heyoka_timed(params, initial, bounce_t, setting=None):
+    """(impacts, CPU s) of heyoka's fastest use (:func:`bounce.methods.heyoka_taylor.impacts`: one
+    propagation, the impact rule in its event callback) over as many impacts as bounce finds from the
+    same start by ``bounce_t[-1]``.  It must find them all by 1.5 times that: after a skipped impact x
+    stays below the floor (psi falls like a parabola, |xi| is bounded) and no event follows, so a
+    timing of fewer impacts stops the benchmark.  (Where the trajectories part by more than DIVERGE_REL,
+    the transient's sensitivity to heyoka's one-step errors, is reported by the scene rows.)"""
+    n = len(bounce_t)
+    t, _, _, _, cpu = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0, setting)
+    if len(t) < n:
+        raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
+    return n, cpu
+
+
+def heyoka_run_timed(params, initial, events):
+    """(impacts, CPU s) of :func:`bounce.methods.heyoka_taylor.run`: heyoka with the method's failure checks
+    (upward crossings, zero-length flights, the flight bound between propagations)."""
     r = HT.run(params, initial, {}, max_events=events)
     return len(r.t), r.cpu_time
 
@@ -152,8 +174,8 @@ def one_flight_bounce(params, start):
     return {"tau": tr.tau[0], "xdot": tr.xdot[0], "xidot": tr.xidot[0], "eta": tr.eta[0]}
 
 
-def one_flight_heyoka(params, start):
-    res = HT.run(params, start, {}, max_events=1)
+def one_flight_heyoka(params, start, setting):
+    res = HT.run(params, start, setting, max_events=1)
     if res.failure:
         return None, f"{res.failure}: {res.extra['reason']}"
     return {"tau": res.t[0], "xdot": res.xdot[0], "xidot": res.extra["xidot"][0], "eta": res.extra["eta"][0]}, ""
@@ -164,20 +186,22 @@ def one_step_errors(name, params, initial) -> dict:
     law = LAWS[name]
     tr = simulate(params, initial, max_events=max(ONE_STEP) + 1)
     starts = [initial.deviations(params)] + [post_impact(tr, k) for k in ONE_STEP]
-    errs = {"bounce": [], "heyoka": []}
+    errs = {"bounce": [], "heyoka": [], "heyoka_accurate": []}
     heyoka_fail = ""
     for st in starts:
         errs["bounce"].append(reference_error(law, st, params.xi_eq, one_flight_bounce(params, st)))
-        h, why = one_flight_heyoka(params, st)
-        if h is None:
-            heyoka_fail = heyoka_fail or why
-            errs["heyoka"].append(math.nan)
-        else:
-            errs["heyoka"].append(reference_error(law, st, params.xi_eq, h))
-    return {"states": ["start"] + [f"after impact {k + 1}" for k in ONE_STEP], "bounce": errs["bounce"],
-            "heyoka": errs["heyoka"], "bounce_max": max(errs["bounce"]),
-            "heyoka_max": None if all(map(math.isnan, errs["heyoka"])) else float(np.nanmax(errs["heyoka"])),
-            "heyoka_failure": heyoka_fail}
+        for key, setting in (("heyoka", {}), ("heyoka_accurate", ACCURATE)):
+            h, why = one_flight_heyoka(params, st, setting)
+            if h is None:
+                heyoka_fail = heyoka_fail or why
+                errs[key].append(math.nan)
+            else:
+                errs[key].append(reference_error(law, st, params.xi_eq, h))
+    out = {"states": ["start"] + [f"after impact {k + 1}" for k in ONE_STEP], **errs,
+           "bounce_max": max(errs["bounce"]), "heyoka_failure": heyoka_fail}
+    for key in ("heyoka", "heyoka_accurate"):
+        out[f"{key}_max"] = None if all(map(math.isnan, errs[key])) else float(np.nanmax(errs[key]))
+    return out
 
 
 def scene_row(name, params, scene, initial, args) -> dict:
@@ -193,7 +217,12 @@ def scene_row(name, params, scene, initial, args) -> dict:
         "stop": tr.stop_reason, "all_impacts": bool((tr.kind == IMPACT).all()), "impacts": len(tr.t)}
     row["same_impacts"] = n_same
     if n_same > 0:  # same start, same impacts
-        row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, n_same), args.repeats)
+        bounce_t = simulate(params, initial, max_events=n_same).t
+        row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, bounce_t), args.repeats)
+        row["heyoka"]["impacts_per_s_checked"] = rates(lambda: heyoka_run_timed(params, initial, n_same),
+                                                       args.repeats)
+        row["heyoka"]["impacts_per_s_accurate"] = rates(lambda: heyoka_timed(params, initial, bounce_t, ACCURATE),
+                                                        args.repeats)
         row["bounce"]["impacts_per_s_same"] = rates(lambda: bounce_timed(params, initial, n_same), args.repeats)
         row["ratio"] = row["bounce"]["impacts_per_s_same"][0] / row["heyoka"]["impacts_per_s"][0]
         n = min(len(first.t), len(tr.t))
@@ -218,7 +247,8 @@ def drop_windows(params, drop, repeats, last=WINDOWS[-1]) -> list:
                "bounce": rates(lambda: bounce_timed(params, start, hi - lo), repeats),
                "heyoka_failure": r.failure}
         if not r.failure:
-            row["heyoka"] = rates(lambda: heyoka_timed(params, start, hi - lo), repeats)
+            bounce_t = simulate(params, start, max_events=hi - lo).t
+            row["heyoka"] = rates(lambda: heyoka_timed(params, start, bounce_t), repeats)
             row["ratio"] = row["bounce"][0] / row["heyoka"][0]
         out.append(row)
     return out
@@ -333,6 +363,13 @@ def print_report(res: dict, notes: list) -> None:
             print(f"{scene:11s} {row['same_impacts']:7d} {_r(b.get('impacts_per_s_same')):33s} "
                   f"{_r(h.get('impacts_per_s')):33s} {row.get('ratio', math.nan):6.1f} "
                   f"{_e(o['bounce_max']):>10s} {_e(o['heyoka_max']):>10s}  {out}")
+        for scene, row in r["rows"].items():
+            if row["heyoka"].get("impacts_per_s_checked"):
+                h, o = row["heyoka"], row["one_step"]
+                print(f"  {scene}: heyoka at {ACCURATE}: {_r(h['impacts_per_s_accurate'])} impacts/s, ratio "
+                      f"{row['bounce']['impacts_per_s_same'][0] / h['impacts_per_s_accurate'][0]:.1f}, one-step error "
+                      f"{_e(o['heyoka_accurate_max'])}; heyoka through bounce.methods.heyoka_taylor.run (per-flight "
+                      f"failure checks): {_r(h['impacts_per_s_checked'])} impacts/s")
         for key in ("drop_windows", "paper_drop_windows"):
             if r.get(key):
                 print(f"{key.replace('_windows', '')} by windows of impact index (both from bounce's exact state "

@@ -12,7 +12,8 @@ bench_power's WINDOWS (evenly spread), one flight each:
   evaluations of eq. (P) per flight, counted by running first_contact's Python function (``py_func``)
   with counting wrappers; the CPU time per impact of bounce on the window (median of 3 runs);
 * heyoka: its integrator steps per flight from the same states (``extra["steps"]`` of
-  :func:`bounce.methods.heyoka_taylor.run`) and its CPU time per impact.
+  :func:`bounce.methods.heyoka_taylor.run`) and its CPU time per impact in its fastest use
+  (:func:`bounce.methods.heyoka_taylor.impacts`, as benchmarks/bench_power.py times it).
 
 Series steps x cost per step against heyoka's steps x cost per step says what limits the ratio
 in the transient (long flights swinging through the rest length xi = 0).
@@ -89,11 +90,12 @@ def main() -> None:
             long_flights += not is_hot
             total.update(counts)
             r = HT.run(params, Deviations(*start), {}, max_events=1)
-            h_steps.append(int(r.extra["steps"][0]) if len(r.t) else np.nan)
+            h_steps.append(int(r.extra["steps"]) if len(r.t) else np.nan)
         first = drop if lo == 0 else Deviations(0.0, float(tr.xdot[lo - 1]), float(tr.xidot[lo - 1]),
                                                  float(tr.eta[lo - 1]))
         b_us = 1e6 * cpu_per_impact(lambda: simulate(params, first, max_events=hi - lo), hi - lo)
-        h_us = 1e6 * cpu_per_impact(lambda: HT.run(params, first, {}, max_events=hi - lo), hi - lo, repeats=1)
+        t_end = 1.5 * (tr.t[hi - 1] - (tr.t[lo - 1] if lo else 0.0)) + 1.0  # past the window's last impact
+        h_us = 1e6 * statistics.median(HT.impacts(params, first, hi - lo, t_end)[4] for _ in range(3)) / (hi - lo)
         per = {name: total[name] / max(long_flights, 1) for name in COUNTED}
         print(f"[{lo:6d}, {hi:6d}) {hot:2d}/{len(idx):2d} {split:5d} {per['taylor_coefficients']:7.1f} "
               f"{per['_root_crossing']:8.1f} {per['_evaluate']:6.1f} {b_us:9.2f} | {np.nanmean(h_steps):12.1f} "

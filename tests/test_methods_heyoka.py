@@ -12,6 +12,8 @@
   the flights skips impacts (missed_impact);
 * samples of y (continuous output) agree with the exact solver's to 1e-12;
 * bad settings get one line naming the setting.
+* its fastest use (:func:`heyoka_taylor.impacts`, the impact rule in the event callback: what
+  benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12.
 """
 
 from __future__ import annotations
@@ -152,3 +154,24 @@ def test_samples_of_y_match_exact_solver():
     exact = registry()["exact"].run(p, DROP, max_events=10, sample_times=times)
     assert not np.isnan(res.y).any()
     assert np.abs(res.y - exact.y).max() < 1e-12
+
+
+@pytest.mark.parametrize("params, k0", [(Parameters(GAMMA, MU), 20), (HERTZ, 2000)])
+def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
+    """impacts() (one propagation, the impact rule in the event callback: the speed benchmark's heyoka)
+    integrates what run() does: the same impacts, times and post-impact states to 1e-12, from a state
+    of the drop where both follow the exact solver (linear: 20 impacts in, Hertz: 2000); it stops at
+    max_events, and finds no impact after t_end."""
+    drop = State.from_psi_xi(6.0, 0.0, params.xi_eq, 0.0)
+    tr = simulate(params, drop, max_events=k0)
+    start = Deviations(0.0, tr.xdot[-1], tr.xidot[-1], tr.eta[-1])
+    ref = run(params, start, max_events=50)
+    assert ref.failure == ""
+    t, xdot, xidot, eta, cpu = HT.impacts(params, start, 50, 10.0 * ref.t[-1])
+    assert len(t) == 50 and cpu >= 0.0
+    assert rel(t, ref.t).max() < 1e-12
+    assert rel(xdot, ref.xdot).max() < 1e-12
+    assert rel(xidot, ref.extra["xidot"]).max() < 1e-12
+    assert np.abs(eta - ref.extra["eta"]).max() < 1e-12 * np.abs(ref.extra["eta"]).max()
+    t_half = HT.impacts(params, start, 50, 0.5 * (ref.t[24] + ref.t[25]))[0]
+    assert len(t_half) == 25 and rel(t_half, ref.t[:25]).max() < 1e-12

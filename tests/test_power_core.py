@@ -8,6 +8,7 @@ the floor (the states are built by integrating *backwards* from a dip bottom).
 from __future__ import annotations
 
 import os
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -20,7 +21,7 @@ from bounce import Deviations, Parameters, State, simulate
 from bounce.flight import FOUND
 from bounce.model import InputError
 from bounce.power_events import energy_excess, simulate_power
-from bounce.power_flight import first_contact
+from bounce.power_flight import _product_error, first_contact
 from bounce.power_series import DEGREE_LONG, law_array
 from bounce.springs.power import PowerSpring
 
@@ -321,3 +322,12 @@ def test_long_flight_of_a_weakly_damped_spring_is_not_capped(mu):
         assert status == FOUND and tau_direct == tau
         e_direct = 0.5 * v * v + abs(xi_eq + eta) ** 2.5 / 2.5
         assert abs(e_direct - e0) <= 2e-14 * e0, (e_direct - e0) / e0
+
+
+@settings(deadline=None, max_examples=300)
+@given(st.floats(-1e6, 1e6, allow_subnormal=False), st.floats(0.0, 1e3, allow_subnormal=False))
+def test_product_error_is_exact(v, h):
+    """The rounding error of v h that first_contact carries into eta's compensation term (Dekker's product) is exact."""
+    p = v * h
+    assume(abs(p) >= 1e-280 or v == 0.0 or h == 0.0)  # Dekker's split is exact while no partial product underflows
+    assert Fraction(v) * Fraction(h) - Fraction(p) == Fraction(_product_error(v, h, p))

@@ -127,13 +127,15 @@ def compensated_add(hi, lo, dt):
 
 
 @njit(cache=True)
-def _record(i, t, tau, kind, u, a, eta, gamma, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind):
+def record_event(i, t, tau, kind, u, a, eta, e, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind):
+    """Write event i of an event loop: time, phase duration, state after it, E - E_m (``e``, of the
+    loop's spring law) and kind (shared by every spring law's event loop)."""
     out_t[i] = t
     out_tau[i] = tau
     out_u[i] = u
     out_a[i] = a
     out_eta[i] = eta
-    out_e[i] = energy_excess(0.0, u, a, eta, gamma)
+    out_e[i] = e
     out_kind[i] = kind
 
 
@@ -167,7 +169,7 @@ def _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs):
     s_start = 0.0
     if x0 == 0.0 and Gs0 == 0.0:
         # F = F' = 0: F'' = -G < 0 (paper, after eq. cond_di_distacco), the gap opens like s^2
-        s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams)
+        s_start = liftoff_time(-Gs0, Gs0, G0, 0.0, sparams, 0.0)  # its F = G0 > 0
     status, s, _, _, omc, _, _, _, S, Sd, _ = first_contact(
         s_start, t_limit / SQRT2, x0, -Gs0, Gs0, G0, 0.0, sparams, scoefs
     )
@@ -237,6 +239,12 @@ def _sticky_modes(a, eta, gamma, t_limit, sparams):
 
 
 @njit(cache=True)
+def _floor_force_noise(a, eta, gamma, mu):
+    """8 eps of the terms of F = eta + 2 mu xi' - 2 gamma: the rounding of forming it (:func:`_at_rest_is_sticky`)."""
+    return 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
+
+
+@njit(cache=True)
 def _at_rest_is_sticky(a, eta, gamma, mu):
     """For x = x' = 0: does the lower mass stay on the floor (F < 0, or F = 0, F' <= 0)?
 
@@ -248,7 +256,7 @@ def _at_rest_is_sticky(a, eta, gamma, mu):
     so this is also the input's own uncertainty.
     """
     F, Fp = floor_force(a, eta, gamma, mu)
-    noise = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
+    noise = _floor_force_noise(a, eta, gamma, mu)
     if F > noise:
         return False
     if F < -noise:
@@ -351,11 +359,11 @@ def run_events(
     elif x0 == 0.0 and u == 0.0:
         if _at_rest_is_sticky(a, eta, gamma, mu):
             sticky = True
-            _record(0, 0.0, 0.0, STICKY_START, u, a, eta, gamma,
-                    out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+            record_event(0, 0.0, 0.0, STICKY_START, u, a, eta, energy_excess(0.0, u, a, eta, gamma),
+                         out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
             n = 1
         else:
-            t_start = liftoff_time(u, a, eta, gamma, params)
+            t_start = liftoff_time(u, a, eta, gamma, params, _floor_force_noise(a, eta, gamma, mu))
     while n < max_events:
         t_limit = t_max - (t_hi + t_lo)
         if sticky:
@@ -368,7 +376,7 @@ def run_events(
             x0 = 0.0
             u = 0.0
             sticky = False
-            t_start = liftoff_time(u, a, eta, gamma, params)
+            t_start = liftoff_time(u, a, eta, gamma, params, math.inf)  # F = 0 at the detach root, to its accuracy
         else:
             status = HANDOVER
             if x0 == 0.0 and t_start == 0.0 and u > 0.0:
@@ -397,11 +405,12 @@ def run_events(
             kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)
             if kind == STICKY_START:
                 sticky = True
-            elif kind == GRAZING:
-                t_start = liftoff_time(u, a, eta, gamma, params)
+            elif kind == GRAZING:  # F = acc >= -(STICKY_ONSET jerk^2 xn)^(1/3) (_is_sticky_onset)
+                window = (STICKY_ONSET * jerk * jerk * rounding_level(scale)) ** (1.0 / 3.0)
+                t_start = liftoff_time(u, a, eta, gamma, params, window)
         t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
-        _record(n, t_hi + t_lo, tau, kind, u, a, eta, gamma,
-                out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        record_event(n, t_hi + t_lo, tau, kind, u, a, eta, energy_excess(0.0, u, a, eta, gamma),
+                     out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
         n += 1
         if out_e[n - 1] < e_stop:
             stop = STOP_ENERGY

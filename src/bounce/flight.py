@@ -242,12 +242,18 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
 
 
 @njit(cache=True)
-def liftoff_time(u, a, eta, g, params):
+def liftoff_time(u, a, eta, g, params, f_window):
     """A time s > 0 with x > 0 on (0, s] for a flight starting on the floor at rest.
 
     With x0 = u = 0, x(s) >= s^2 (F/2 + F' s/6 - M4 s^2/24) where F = x''(0),
     F' = x'''(0) and M4 bounds |x''''| = |xi''''| (energy argument).  Returns half
     the positive root of the bracket, or 0 if neither F > 0 nor (F = 0, F' > 0).
+
+    ``f_window`` >= 0: how well the caller's classification of the start resolves F (the
+    rounding of F at a start at rest, the tangential window at a grazing contact; inf at a
+    detach, where F = 0 to the root finder's accuracy): F in [-f_window, 0] is F = 0 on the
+    sticky boundary (approximation at that level), F < -f_window is pressed onto the floor
+    (returns 0, whatever F').
     """
     mu = params[P_MU]
     _, z2, z3, z4 = xi_derivatives(eta - g, a, mu)
@@ -255,7 +261,9 @@ def liftoff_time(u, a, eta, g, params):
     Fp = -z3
     z5 = xi_derivatives(z2, z3, mu)[2]  # xi'' solves the same equation: (xi''', xi'''', xi^(5), ...)
     M4 = derivative_bound(z3, z4, z5) * B_MARGIN
-    F = max(F, 0.0)  # a rest state on the sticky boundary: F = 0 up to rounding
+    if F < -f_window:
+        return 0.0
+    F = max(F, 0.0)
     if F == 0.0 and Fp <= 0.0:
         return 0.0
     if M4 == 0.0:

@@ -55,6 +55,7 @@ from .events import (
     STOP_TIME,
     contact,
     compensated_add,
+    record_event,
 )
 from .flight import FOUND, HORIZON, NEVER
 from .power_flight import (AT_REST, HANDOVER, SLOW_CROSSING, at_rest_is_sticky, first_contact, floor_force,
@@ -72,17 +73,6 @@ POWER_STOP_NAMES = STOP_NAMES + ("slow_crossing",)
 def energy_excess(u, a, eta, law):
     """E - E_m at x = 0 (eq. ``nonlin-energy``), the potential part without cancellation."""
     return 0.5 * (a * a + (u + a) * (u + a)) + bregman(eta, law)
-
-
-@njit(cache=True)
-def _record(i, t, tau, kind, u, a, eta, law, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind):
-    out_t[i] = t
-    out_tau[i] = tau
-    out_u[i] = u
-    out_a[i] = a
-    out_eta[i] = eta
-    out_e[i] = energy_excess(u, a, eta, law)
-    out_kind[i] = kind
 
 
 @njit(cache=True)
@@ -106,7 +96,8 @@ def run_power_events(
     kind = -1  # the last recorded event's kind (none yet)
     if x0 == 0.0 and u == 0.0 and at_rest_is_sticky(a, eta, law):
         sticky = True
-        _record(0, 0.0, 0.0, STICKY_START, u, a, eta, law, out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        record_event(0, 0.0, 0.0, STICKY_START, u, a, eta, energy_excess(u, a, eta, law),
+                     out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
         n = 1
     while n < max_events:
         t_limit = t_max - (t_hi + t_lo)
@@ -151,8 +142,8 @@ def run_power_events(
                 kind, u, a, eta = contact(v, acc, jerk, scale, u, a, gamma, tau, eta_t, xid_t)  # the shared rule
             sticky = kind == STICKY_START
         t_hi, t_lo = compensated_add(t_hi, t_lo, tau)
-        _record(n, t_hi + t_lo, tau, kind, u, a, eta, law,
-                out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
+        record_event(n, t_hi + t_lo, tau, kind, u, a, eta, energy_excess(u, a, eta, law),
+                     out_t, out_tau, out_u, out_a, out_eta, out_e, out_kind)
         n += 1
         if out_e[n - 1] < e_stop:
             stop = STOP_ENERGY

@@ -17,7 +17,12 @@ bound of the series is below 2^-64 (hot path: 2^-55) of the rounding scale of x 
 gamma s^2/2) and of x' (|u| + gamma s), and of xi (|xi0| + |v| s + |xi''(0)| s^2/2)
 and xi' (|v| + |xi''(0)| s) where those are smaller: the polynomial is then the
 flight to rounding (a tolerance relative to x alone would let a systematic
-truncation error of the spring build up over the steps of a long flight).
+truncation error of the spring build up over the steps of a long flight).  The radius is
+:func:`bounce.power_series.step_radius` (the comparison radius of eq. (C) of
+:mod:`bounce.power_series` where the force, not the speed, limits the first one: 20% fewer steps
+on the long flights of the Hertz drop, 40% on its flights ~300..1000) and the degree DEGREE_LONG = 32
+(measured there: 26 costs 15% more time per flight, 40 the same as 32).  The step's change of eta,
+v h + D(h), carries v h exactly (its rounding error by Dekker's product into the compensation term).
 
 No impact is skipped (:func:`first_contact`).  In flight the spring energy
 E_s = xi'^2/2 + rho |xi|^(a+2)/(a+2) does not increase (d/dt E_s = -2 mu xi'^2 |xi|^b),
@@ -81,8 +86,8 @@ tail below TOL_ROOT = 2^-60 of |xi'| (xi') and of a lower bound |xi1 - xi0| / (1
 duration (t): exact to rounding like the windows above.  For Hertz (mu = 0.05) it spans
 |xi| <= 3e-3 before and 6e-3 after the crossing at |v| = 0.03 (2e-2 and 4e-2 at |v| = 0.3); on the
 drop of benchmarks/bench_power.py it took the first 10 flights from ~560 to ~200 series steps
-per flight (the rest lie where |xi| is comparable to the amplitude, where the time series is the
-right expansion; heyoka takes ~375 steps on the same flights, at about the same cost per step:
+per flight (~160 with the comparison radius; the rest lie where |xi| is comparable to the amplitude,
+where the time series is the right expansion; heyoka takes ~375 steps on the same flights:
 ``python benchmarks/bench_power_steps.py``).  Approximations: sigma0 is the
 rounded root |xi0|^(1/q) (sigma0^q = |xi0| to q ulps: below the resolution of xi); the state at
 sigma1 is xi1 = -s sigma1^q rounded.  The step ends before the floor can be reached (the safe
@@ -95,8 +100,8 @@ regime is one low-degree step, solved like :func:`bounce.short_flight.short_flig
 (cubic predictor, Newton steps certified to keep x > 0 before the root and to be
 within rounding of it); its window is 17/16 of the predicted flight (a root beyond it is a
 HANDOVER to :func:`first_contact`, never a skipped impact), its radius the cheap one or, where
-that needs a degree above ONCE_ABOVE, the comparison radius of eq. (C) from one closed-form
-evaluation, and the root's last Newton step is applied to second order.  A flight a few times
+that needs a degree above ONCE_ABOVE, the one-shot comparison radius of eq. (C)
+(:func:`bounce.power_series.step_radius`), and the root's last Newton step is applied to second order.  A flight a few times
 longer is two or three such steps (:func:`_split_flight`: the steps before the last end before
 2u/B, where the curvature bound alone keeps x > 0, so only the last needs a root certificate).
 For the Hertz drop of benchmarks/bench_power.py this takes the flights from impact ~1e3 on
@@ -112,8 +117,11 @@ rounding of the float coefficients).  The frequency of the nonlinear spring depe
 (omega ~ E^c, c = a/(2(a+2)): 1/10 for Hertz), so the walk turns into a phase error: after n
 crossings xi, xi' and eta are off by ~ c pi sigma_1 n^(3/2) / sqrt(3) relative to the swing W (rms;
 Hertz: 1.5e-17 n^(3/2), single values within ~3x of it), while tau, x and x' stay within a few
-ulps (psi is a parabola).  So 1e-14 holds to ~70 crossings (tests/test_power_reference.py: 45
-crossings, 2.6e-15), and the ~2800 crossings of a 6e4-long Hertz flight end with xi, xi' ~2e-12 off
+ulps (psi is a parabola).  So 1e-14 holds to ~70 crossings in rms, single values within ~3x
+(tests/test_power_reference.py: 45 crossings, 4.3e-15 of W; over 40 independent realisations of that
+flight, gamma = 1e-5 (1 + 0.0137 k), rms 4.1e-15 and largest 1.1e-14, as before the comparison radius
+(3.97e-15, 1.19e-14); its longer steps without the exact v h: 4.9e-15, 1.6e-14, each step's
+rounding of v h being larger: ``python benchmarks/bench_power_long_flight.py --realisations 40``), and the ~2800 crossings of a 6e4-long Hertz flight end with xi, xi' ~2e-12 off
 (of W and of the speed at xi = 0; the estimate: 2.3e-12) and the energy (mu = 0) within 1e-14
 (tests/test_power_core.py: 8e-15).  This is the problem's conditioning, not the method's: a
 half-ulp rounding of xi at the start of that flight alone moves its end by up to
@@ -147,7 +155,6 @@ from .power_series import (
     integer_power,
     L_ANALYTIC_B,
     cauchy_radius,
-    comparison_radius_once,
     curvature,
     displacement,
     powers_at,
@@ -156,7 +163,7 @@ from .power_series import (
     root_radius,
     root_series,
     root_exponents,
-    series_radius,
+    step_radius,
     tail_bounds,
     taylor_coefficients,
 )
@@ -639,7 +646,7 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
                 return FAILED, t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             t_hi, t_lo = compensated_add(t_hi, t_lo, T)
             continue
-        radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, rho, mu, law)
+        radius, Rz, Rp = step_radius(w0, v, p0, q0, 0.0, rho, mu, law)
         xidd0 = abs(rho * p0 + 2.0 * mu * v * q0 * (1.0 if xi0 >= 0.0 else -1.0))  # |xi''(0)|
         theta = 0.5
         for _ in range(200):
@@ -699,9 +706,26 @@ def first_contact(x, u, v, eta, t_limit, law, X, P, Q, lifting=False):
             return HORIZON, t_limit, vs, xs, eta + ((v * h + D) + (el + vl * h)), (v + Dp) + vl, 0.0, 0.0
         x, xl = compensated_add(x, xl, (u * h - 0.5 * gamma * h * h - D) + ul * h)
         u, ul = compensated_add(u, ul, -gamma * h - Dp)
-        eta, el = compensated_add(eta, el, (v * h + D) + vl * h)
+        vh = v * h
+        eta, el = compensated_add(eta, el, vh)
+        eta, el = compensated_add(eta, el, D + (vl * h + _product_error(v, h, vh)))
         v, vl = compensated_add(v, vl, Dp)
         t_hi, t_lo = compensated_add(t_hi, t_lo, h)
+
+
+@njit(cache=True)
+def _product_error(a, b, p):
+    """a b - p for p = fl(a b) by Dekker's product: exact unless a partial product underflows (|a b| below
+    ~1e-280: then off by < 1e-300), 0 where the split could overflow (|p| >= 1e290)."""
+    if not abs(p) < 1e290:
+        return 0.0
+    c = 134217729.0 * a
+    ah = c - (c - a)
+    al = a - ah
+    c = 134217729.0 * b
+    bh = c - (c - b)
+    bl = b - bh
+    return ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
 @njit(cache=True)
@@ -756,29 +780,25 @@ def _root_update(dt, vs, gamma, D, Dp, D2, D3):
 
 @njit(cache=True)
 def _hot_degree(h, w0, v, p0, q0, tol_x, tol_v, law):
-    """(K, r_c, Rz, Rp, formed) of a hot-path step of length h (:func:`_short_degree`; K = 0: none,
-    and then r_c is the larger radius).
+    """(K, r_c, Rz, Rp) of a hot-path step of length h (:func:`_short_degree`; K = 0: none, and then
+    r_c is the larger radius).
 
     The cheap first radius (:func:`bounce.power_series.cauchy_radius`) first; where it gives no
-    degree <= ONCE_ABOVE, the comparison radius from one evaluation of eq. (C)
-    (:func:`bounce.power_series.comparison_radius_once`, ~2x near the spring's turning point; it
-    costs about as much as ~2 degrees of the series, so deep in the asymptotic regime, where the
-    degree is low, it is not formed).  ``formed``: whether that radius was formed.
+    degree <= ONCE_ABOVE, the one-shot comparison radius of eq. (C)
+    (:func:`bounce.power_series.step_radius`, ~2x near the spring's turning point; it costs about
+    as much as ~2 degrees of the series, so deep in the asymptotic regime, where the degree is
+    low, it is not formed).
     """
     radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
     theta = h / radius
     K = _short_degree(theta, Rz, Rp, tol_x, tol_v, ONCE_ABOVE)
     if K > 0:
-        return K, radius, Rz, Rp, False
-    r_once, Rz_once, Rp_once = comparison_radius_once(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
-    if not r_once > radius:
-        return _short_degree(theta, Rz, Rp, tol_x, tol_v, DEGREE_SHORT), radius, Rz, Rp, r_once > 0.0
-    K_once = _short_degree(h / r_once, Rz_once, Rp_once, tol_x, tol_v, DEGREE_SHORT)
-    if K_once == 0:
-        K = _short_degree(theta, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
-        if K > 0:
-            return K, radius, Rz, Rp, True
-    return K_once, r_once, Rz_once, Rp_once, True  # K_once = 0: the larger radius, for _split_flight's steps
+        return K, radius, Rz, Rp
+    r_step, Rz_step, Rp_step = step_radius(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
+    K_step = _short_degree(h / r_step, Rz_step, Rp_step, tol_x, tol_v, DEGREE_SHORT)
+    if K_step == 0 and not r_step > radius:
+        return _short_degree(theta, Rz, Rp, tol_x, tol_v, DEGREE_SHORT), radius, Rz, Rp
+    return K_step, r_step, Rz_step, Rp_step  # K_step = 0: the larger radius, for _split_flight's steps
 
 
 @njit(cache=True)
@@ -820,7 +840,7 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
             if w0 == 0.0:
                 return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             p0, q0 = powers_at(w0, law)
-            K, radius, Rz, Rp, _ = _hot_degree(h, w0, vj, p0, q0, tol_x, tol_v, law)
+            K, radius, Rz, Rp = _hot_degree(h, w0, vj, p0, q0, tol_x, tol_v, law)
         else:
             xi0 = law[L_XI_EQ] + eta
             w0 = abs(xi0)
@@ -887,9 +907,8 @@ def short_flight(u, v, eta, law, X, P, Q):
     only says where the series is valid and evaluated, so a root beyond it is a HANDOVER and a
     poor predictor costs time, never an impact.  Degree K <= DEGREE_SHORT the least for which the
     tail bounds on [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the cheap first radius
-    or the comparison radius from one evaluation of eq. (C) (:func:`_hot_degree`), or where that
-    is not formed (the linear law) with :func:`bounce.power_series.series_radius`; else two or
-    three steps (:func:`_split_flight`) or HANDOVER.  From t_p, Newton steps dt = -x/x', each certified
+    or the one-shot comparison radius of eq. (C) (:func:`_hot_degree`); else two or three steps
+    (:func:`_split_flight`) or HANDOVER.  From t_p, Newton steps dt = -x/x', each certified
     as in :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
     B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
     from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
@@ -912,10 +931,7 @@ def short_flight(u, v, eta, law, X, P, Q):
         T = min(T, WINDOW * t_p)
     tol_x = TOL * u * T
     tol_v = TOL * u
-    K, radius, Rz, Rp, formed = _hot_degree(T, w0, v, p0, q0, tol_x, tol_v, law)
-    if K == 0 and not formed:  # e.g. the linear law; where formed, within 1% of series_radius's
-        radius, Rz, Rp = series_radius(w0, v, p0, q0, 0.0, rho, mu, law)
-        K = _short_degree(T / radius, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
+    K, radius, Rz, Rp = _hot_degree(T, w0, v, p0, q0, tol_x, tol_v, law)
     B = _curvature_bound_near(w0, v, p0, q0, law)
     if K == 0:
         if t_p > 0.0:

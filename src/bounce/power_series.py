@@ -57,10 +57,7 @@ r_c = s with e(s) <= Rz the solution is holomorphic on |t| < r_c with |xi - xi0|
 |xi' - v0| <= Rp = s (A0 + L e(s) + M1 |v0|) / (1 - M1 s) (e'(s) = |v0| + int_0^s e'' with
 e, e' increasing; needs M1 s < 1): the same tail bounds hold with this (r_c, Rz, Rp).
 e has non-negative Taylor coefficients (no cancellation), summed with a rigorous tail.
-:func:`series_radius` returns the larger of the two radii.  (C) has constant coefficients, so e
-also has a closed form (:func:`excursion_closed`, an upper bound with its rounding added), which
-:func:`comparison_radius_once` evaluates at one or two guessed s instead of the Newton loop of
-:func:`comparison_radius` (the hot path of :mod:`bounce.power_flight`).
+:func:`series_radius` returns the larger of the two radii.
 
 The coefficients themselves carry the usual relative rounding of a recurrence
 (a few ulps times the degree); they are not part of the bound.
@@ -100,7 +97,8 @@ DISC = 0.95
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
 DEGREE_SHORT = 32
-#: from this degree up the Hertz recurrence's Cauchy sums run in four partial sums (below, one is faster).
+#: from this degree up the a = b recurrence's Cauchy sums run in four partial sums (below, one is faster; Hertz
+#: has its own kernel, :func:`_coefficients_hertz`).
 DEGREE_SPLIT = 12
 #: relative margin on computed bounds (covers their own rounding).
 MARGIN = 1.0 + 1e-12
@@ -224,6 +222,9 @@ def taylor_coefficients(xi0, w0, v0, p0, q0, f0, r, m, law, H, K, X, P, Q):
     X[0] = xi0
     X[1] = v0 * H
     H2 = H * H
+    if ap1 == b + 1.0 and b == 0.5:
+        _coefficients_hertz(sigma, q0, f0, r, m, H, K, X, Q, P)
+        return
     if ap1 == b + 1.0 and not lin_b:
         if K > DEGREE_SPLIT:
             _equal_powers_split(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, P)
@@ -301,33 +302,19 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, s
     (X_k in units of H; for k = 0 the restoring part is f0, as in the general case), one
     Cauchy sum instead of a Miller recurrence for |xi|^(a+1) plus one for the damping.  For
     b = 1/2, Q_k comes from Q^2 = sigma xi, 2 Q_0 Q_k = sigma X_k - sum_{j=1..k-1} Q_j Q_{k-j}
-    (a symmetric sum, half the products of Miller's); otherwise from Miller's recurrence.
-    Same coefficients up to the rounding of the sums (a few ulps times the degree).  Y is a
-    work array (length > K).  ``split`` (a constant of each caller): the Cauchy sums in four
-    partial sums (:func:`_convolution`) or in one.
+    (a symmetric sum, half the products of Miller's: :func:`_coefficients_hertz`); otherwise from
+    Miller's recurrence.  Same coefficients up to the rounding of the sums (a few ulps times the
+    degree).  Y is a work array (length > K).  ``split`` (a constant of each caller): the Cauchy sums
+    in four partial sums (:func:`_convolution`) or in one.
     """
     H2 = H * H
     Q[0] = q0
-    half = b == 0.5
-    inv_2q0 = 0.5 / q0
     for k in range(0, K - 1):
         if k >= 1:
-            if half:
-                if split:
-                    s = _convolution(Q, Q, 1, (k + 1) // 2 - 1, k)
-                else:
-                    s = 0.0
-                    for j in range(1, (k + 1) // 2):
-                        s += Q[j] * Q[k - j]
-                s *= 2.0
-                if k % 2 == 0:
-                    s += Q[k // 2] * Q[k // 2]
-                Q[k] = (sigma * X[k] - s) * inv_2q0
-            else:
-                s = 0.0
-                for j in range(1, k + 1):
-                    s += (b * j - (k - j)) * X[j] * Q[k - j]
-                Q[k] = s * inv_xi0 * INV[k]
+            s = 0.0
+            for j in range(1, k + 1):
+                s += (b * j - (k - j)) * X[j] * Q[k - j]
+            Q[k] = s * inv_xi0 * INV[k]
             Y[k] = H2 * r * X[k] + 2.0 * m * H * (k + 1) * X[k + 1]
             if split:
                 acc = _convolution(Y, Q, 0, k, k)
@@ -338,6 +325,48 @@ def _coefficients_equal_powers(sigma, inv_xi0, q0, f0, r, m, b, H, K, X, Q, Y, s
         else:
             Y[0] = H2 * r * X[0] + 2.0 * m * H * X[1]
             acc = H2 * f0 + 2.0 * m * H * X[1] * q0
+        X[k + 2] = -acc * INV[k + 1] * INV[k + 2]
+
+
+@njit(cache=True)
+def _coefficients_hertz(sigma, q0, f0, r, m, H, K, X, Q, Y):
+    """:func:`_coefficients_equal_powers` for a = b = 1/2 (Hertz), its Cauchy sums folded in pairs.
+
+    With Q^2 = sigma xi, for k >= 1 (j over 1 <= j < k - j, and the middle term j = k/2 for even k)
+
+        2 Q_0 Q_k = sigma X_k - 2 sum_j Q_j Q_{k-j} - [Q_{k/2}^2],
+        sum_{i=0..k} Y_i Q_{k-i} = Y_0 Q_k + Y_k Q_0 + sum_j (Y_j Q_{k-j} + Y_{k-j} Q_j) + [Y_{k/2} Q_{k/2}]:
+
+    one pass over j < k/2 loads Q_j, Q_{k-j}, Y_j, Y_{k-j} once for three independent sums, ~0.7x the
+    time of the two sums taken apart (K = 32: 0.47 us against 0.65 us).  The same coefficients up
+    to the rounding of the sums (their order differs).
+    """
+    H2r = H * H * r
+    mH2 = 2.0 * m * H
+    Q[0] = q0
+    inv_2q0 = 0.5 / q0
+    Y[0] = H2r * X[0] + mH2 * X[1]
+    X[2] = -(H * H * f0 + mH2 * X[1] * q0) * INV[1] * INV[2]
+    for k in range(1, K - 1):
+        Y[k] = H2r * X[k] + mH2 * (k + 1) * X[k + 1]
+        sq = 0.0
+        a0 = 0.0
+        a1 = 0.0
+        for j in range(1, (k + 1) // 2):
+            qj = Q[j]
+            qkj = Q[k - j]
+            sq += qj * qkj
+            a0 += Y[j] * qkj
+            a1 += Y[k - j] * qj
+        sq *= 2.0
+        acc = a0 + a1
+        if k % 2 == 0:
+            mid = Q[k // 2]
+            sq += mid * mid
+            acc += Y[k // 2] * mid
+        qk = (sigma * X[k] - sq) * inv_2q0
+        Q[k] = qk
+        acc += Y[0] * qk + Y[k] * q0
         X[k + 2] = -acc * INV[k + 1] * INV[k + 2]
 
 
@@ -373,95 +402,41 @@ def series_radius(w0, v0, p0, q0, c0, r, m, law):
     """(r_c, Rz, Rp) as :func:`cauchy_radius`, the larger of the module docstring's two radii.
 
     The comparison radius (eq. (C)) is tried where the first is limited by the force (|v0| r_c <
-    0.9 Rz), not by the speed (there it gains little).
+    0.9 Rz), not by the speed (there it gains little); its root by :func:`comparison_radius`.
     """
+    return _larger_radius(w0, v0, p0, q0, c0, r, m, law, False)
+
+
+@njit(cache=True)
+def step_radius(w0, v0, p0, q0, c0, r, m, law):
+    """:func:`series_radius` with the comparison radius from :func:`comparison_step` (one evaluation of
+    the series of eq. (C), ~0.1 us, where :func:`comparison_radius` takes ~0.3 us): the radius of the
+    general steps of a flight, which it takes from 15% to 45% fewer steps than :func:`cauchy_radius`
+    (``python benchmarks/bench_power_steps.py``)."""
+    return _larger_radius(w0, v0, p0, q0, c0, r, m, law, True)
+
+
+@njit(cache=True, inline="always")
+def _larger_radius(w0, v0, p0, q0, c0, r, m, law, one_shot):
+    """The body of :func:`series_radius` (``one_shot`` False) and :func:`step_radius` (True)."""
     radius, Rz, Rp = cauchy_radius(w0, v0, p0, q0, c0, r, m, law)
     av = abs(v0)
     if not (Rz > 0.0 and w0 > 0.0 and av * radius < 0.9 * Rz):
         return radius, Rz, Rp
-    A0, L, M1 = comparison_constants(w0, p0, q0, c0, r, m, law)
-    s, e = comparison_radius(Rz, av, A0, L, M1)
-    if s > radius and M1 * s < 0.5:
-        return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN  # e'(s) - |v0| (docstring)
-    return radius, Rz, Rp
-
-
-@njit(cache=True)
-def comparison_constants(w0, p0, q0, c0, r, m, law):
-    """(A0, L, M1) of eq. (C) at |xi0| = w0 > 0 (module docstring), each times MARGIN."""
     if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
         A0, L, M1 = c0 + r * w0, r, 2.0 * m
     else:  # L = r (a+1) (1.95 w0)^a, M1 = 2 m (1.95 w0)^b
         A0, L, M1 = c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + DISC) * w0), 2.0 * m * law[L_GROW_B] * q0
-    return A0 * MARGIN, L * MARGIN, M1 * MARGIN
-
-
-@njit(cache=True)
-def excursion_closed(s, av, A0, L, M1):
-    """(upper bound of e(s), e'(s)) of eq. (C) from its closed form (constant coefficients), for L > 0.
-
-    With D = sqrt(M1^2 + 4L), l1 = (M1 + D)/2 > 0 and l2 = -L/l1 < 0 the roots of l^2 - M1 l - L,
-    e = c1 expm1(l1 s) + c2 expm1(l2 s), c1 = (av - l2 A0/L)/D >= 0, c2 = (l1 A0/L - av)/D (e(0) = 0,
-    e'(0) = av, e'' = A0 + L e + M1 e').  Each of the ~20 operations rounds by <= 1 ulp (expm1 of
-    libm included); c1 is a sum of non-negative terms, and the cancellation in c2 (av ~ l1 A0/L)
-    leaves an absolute error <= 16 eps c1 <= 64 eps |t1| when l1 s >= k s >= 1/4 (expm1 >= 1/4), so
-    for k s >= 1/4 (k = sqrt(L), the only use) the computed sum is within 256 eps (|t1| + |t2|) of
-    e, and that is added.  The terms cancel at most like sinh(k s) against cosh(k s) - 1, a factor
-    <= 4/(k s) <= 16: the bound is within 1e-12 relative of e.  (:func:`excursion`'s series costs
-    ~25 passes of a loop.)  e'(s) (for Newton's method only) carries no such bound.
-    """
-    D = math.sqrt(M1 * M1 + 4.0 * L)
-    l1 = 0.5 * (M1 + D)
-    l2 = -L / l1
-    c1 = (av - l2 * A0 / L) / D
-    c2 = (l1 * A0 / L - av) / D
-    g1 = math.expm1(l1 * s)
-    g2 = math.expm1(l2 * s)
-    t1 = c1 * g1
-    t2 = c2 * g2
-    return (t1 + t2) + 256.0 * 2.0**-52 * (abs(t1) + abs(t2)), c1 * l1 * (g1 + 1.0) + c2 * l2 * (g2 + 1.0)
-
-
-@njit(cache=True)
-def comparison_radius_once(w0, v0, p0, q0, c0, r, m, law):
-    """(r_c, Rz, Rp) of eq. (C) from one evaluation of e in closed form (no Newton loop); r_c = 0 if that fails.
-
-    For M1 = 0, (C) has the closed form e_0(s) = (A0/L)(cosh(k s) - 1) + (|v0|/k) sinh(k s), k = sqrt(L),
-    and e_0(s) = Rz is a quadratic in z = exp(k s): s_0 = log(z)/k.  e >= e_0 (M1 >= 0, non-negative
-    coefficients), so the root of e lies below s_0.  Where M1 s_0 <= 1/32, s = s_0 / (1 + M1 s_0) is
-    tried (for Hertz near its equilibrium, mu = 0.01: e(s) ~ 0.97 Rz, s within 1.5% of
-    :func:`comparison_radius`'s), elsewhere (or where that fails) one Newton step on the closed form
-    of e (:func:`excursion_closed`) from s_0 towards e = 0.99 Rz (e is convex: s stays above that
-    root).  A guess is only a guess: the radius is rigorous because e(s) <= Rz is checked with the upper bound of
-    :func:`excursion_closed` (k s >= 1/4, else not formed), and then (s, Rz, Rp) are those of the module
-    docstring (M1 s < 1/2).  Formed for the singular laws (Rz = DISC |xi0|), not for a = b = 0.
-    """
-    Rz = DISC * w0
-    av = abs(v0)
-    if not (w0 > 0.0 and law[L_ANALYTIC_A] + law[L_ANALYTIC_B] < 2.0):
-        return 0.0, Rz, 0.0
-    A0, L, M1 = comparison_constants(w0, p0, q0, c0, r, m, law)
-    k = math.sqrt(L)
-    alpha, beta = A0 / L, av / k
-    z = ((alpha + Rz) + math.sqrt((alpha + Rz) * (alpha + Rz) - (alpha - beta) * (alpha + beta))) / (alpha + beta)
-    s0 = math.log(z) / k
-    guess = M1 * s0 <= 1.0 / 32.0
-    s = s0 / (1.0 + M1 * s0)
-    for _ in range(2):
-        if not guess:  # one Newton step from s_0 towards e = 0.99 Rz
-            e, de = excursion_closed(s0, av, A0, L, M1)
-            if not de > 0.0:
-                break
-            s = s0 - (e - 0.99 * Rz) / de
-        if not (k * s >= 0.25 and M1 * s < 0.5):
-            break
-        e = excursion_closed(s, av, A0, L, M1)[0] * MARGIN
-        if e <= Rz:
-            return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN
-        if not guess:
-            break
-        guess = False
-    return 0.0, Rz, 0.0
+    A0 *= MARGIN
+    L *= MARGIN
+    M1 *= MARGIN
+    if one_shot:
+        s, e = comparison_step(Rz, av, A0, L, M1)
+    else:
+        s, e = comparison_radius(Rz, av, A0, L, M1)
+    if s > radius and M1 * s < 0.5:
+        return s, Rz, s * (A0 + L * e + M1 * av) / (1.0 - M1 * s) * MARGIN  # e'(s) - |v0| (docstring)
+    return radius, Rz, Rp
 
 
 @njit(cache=True)
@@ -513,6 +488,49 @@ def comparison_radius(Rz, av, A0, L, M1):
         s += (0.98 * Rz - e) / de
         if not s > 0.0:
             break
+    return 0.0, 0.0
+
+
+@njit(cache=True)
+def comparison_guess(Rz, av, A0, L, M1):
+    """s with e(s) ~ Rz for eq. (C) in closed form: a guess, not a bound (:func:`comparison_step` checks it).
+
+    With lam = M1/2 + sqrt(M1^2/4 + L), the growth rate of (C) (lam^2 = L + M1 lam), the equation
+    e'' = A0 + lam^2 e, e(0) = 0, e'(0) = av ((C) itself for M1 = 0) has e = a (cosh(lam s) - 1) +
+    b sinh(lam s), a = A0/lam^2, b = av/lam, and e(s) = Rz is the quadratic (a + b) z^2 - 2 (a + Rz) z +
+    (a - b) = 0 in z = exp(lam s): z - 1 = (Rz - b + sqrt(D)) / (a + b), D = Rz (2 a + Rz) + b^2 (for
+    b > Rz as 2 Rz / (sqrt(D) + b - Rz): no cancellation).  For M1 > 0 the root of (C) comes earlier:
+    measured over five laws ((rho, a, b) = (1, 1/2, 1/2), (1/2, 1/4, 1), (1, 0, 0), (1, 1, 1),
+    (1, 1/2, 0)), mu <= 1, |xi0|/|xi_eq| in [1e-3, 5], |v0| in [1e-5, 0.3], this s is late by <= 0.28
+    M1/lam relative, hence the factor 1/(1 + 0.3 M1/lam) (the guess then early by up to ~0.3 M1/lam:
+    0.3% on the drop of benchmarks/bench_power.py).
+    """
+    half = 0.5 * M1
+    lam = half + math.sqrt(half * half + L)
+    a = A0 / (lam * lam)
+    b = av / lam
+    root = math.sqrt(Rz * (2.0 * a + Rz) + b * b)
+    zm1 = 2.0 * Rz / (root + (b - Rz)) if b > Rz else ((Rz - b) + root) / (a + b)
+    return math.log1p(zm1) / (lam + 0.3 * M1)
+
+
+@njit(cache=True)
+def comparison_step(Rz, av, A0, L, M1):
+    """(s, e(s)) with e(s) <= Rz for eq. (C), proven by :func:`excursion` (an upper bound of e), (0, 0) if
+    none is found: 0.995 times :func:`comparison_guess`, then 0.9 times that.
+
+    The one-shot counterpart of :func:`comparison_radius` (Newton's method to 2% of the root): at most
+    two evaluations of the series, one where the guess is not late (all the measured cases of
+    :func:`comparison_guess`).
+    """
+    if not (A0 > 0.0 and L > 0.0):
+        return 0.0, 0.0
+    s = 0.995 * comparison_guess(Rz, av, A0, L, M1)
+    for _ in range(2):
+        e = excursion(s, av, A0, L, M1)[0]
+        if e <= Rz:
+            return s, e
+        s *= 0.9
     return 0.0, 0.0
 
 

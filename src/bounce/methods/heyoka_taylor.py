@@ -24,10 +24,11 @@ Failure detection (from the integrator's own output):
 ``missed_impact``  (a) the flight outlives a bound it cannot outlive: x = psi - xi <= psi(t0)
     + psi'(t0) (t - t0) - gamma (t - t0)^2/2 + X_m, with X_m >= |xi| from the spring energy
     xi'^2/2 + rho |xi|^(a+2)/(a+2), which does not increase in flight (eq. ``nonlin-energy``),
-    so x < 0 after that time: a propagation reaching it without an event has stepped over an
-    impact (in practice: one that fell inside the event's cooldown); (b) a non-terminal event on
-    x = 0 with direction positive fires strictly inside a flight: x came back up through the
-    floor, so the dip below it was an impact the event detection skipped.
+    so x < 0 after that time: checked at the end of every propagation (each runs CHUNK_FLIGHTS = 64
+    flight bounds ahead), a flight still under way past it has stepped over an impact (in
+    practice: one that fell inside the event's cooldown); (b) a non-terminal event on x = 0 with
+    direction positive fires strictly inside a flight: x came back up through the floor, so the
+    dip below it was an impact the event detection skipped.
 ``stall``          the integrator's state became non-finite (``err_nf_state``: the Taylor
     coefficients of (xi^2)^(p/2) divide by xi^2, so a flight with the spring exactly at rest
     length, e.g. the paper's drop with xi(0) = xi'(0) = 0, fails at once for a, b > 0), a
@@ -36,15 +37,19 @@ Failure detection (from the integrator's own output):
 ``budget``         process time over ``cpu_budget`` seconds (checked between flights).
 
 ``extra`` carries the post-impact ``xidot`` and ``eta`` (for one-step errors against the
-references), ``steps`` per flight, the cooldown heyoka used, ``start`` (the state it integrated
+references), ``steps`` (heyoka's steps in all), the cooldown heyoka used, ``start`` (the state it integrated
 from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` (one line) on failure.
 heyoka (~2.4 s to import) loads at its first use (:func:`bounce._registry.lazy_import`), so listing the methods
 does not load it.
 
 Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, Hertz a = b = 1/2, gamma = mu = 0.01, one
-core of a shared machine, load ~5, medians of 5; numbers in results/timing/bench_power.json): ~6e4
-impacts/s in the asymptotic regime (bounce 2.6e6, 44x), 3e3-3e4 in the drop's first 1000 impacts, whose
-long flights cross the rest length xi = 0 (there bounce's series flights are 4-10x slower than heyoka);
+core of a shared machine, load 1.8-3.2, medians of 5; numbers in results/timing/bench_power.json), heyoka
+in its fastest use (:func:`impacts`: one propagation, the impact rule in the event callback): 2.5e5
+impacts/s in the asymptotic regime (bounce 2.6e6, 10.5x), 3e3-3e5 in the drop's first 1e4 impacts, whose
+long flights cross the rest length xi = 0 (there bounce is 0.9-1.8x heyoka: both take Taylor steps of
+similar cost, bounce about half as many; over the first 2e4 impacts 1.8x); through :func:`run`, with
+the failure checks below, ~6 us per impact deep against 4 (the upward event and the callback's checks;
+run returned to Python after every flight until 2026-11, 18 us per impact);
 one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
@@ -58,6 +63,7 @@ detection does not restart cleanly on the event surface x = 0, see :func:`_start
 
 from __future__ import annotations
 
+import bisect
 import functools
 import math
 import time
@@ -75,6 +81,7 @@ DEFAULTS = {"rho": None, "a": None, "b": None, "tol": 2.0**-52, "cooldown": None
 STALL_DT = 1e-12
 STALL_COUNT = 50
 EVENT_STOP = -1  # heyoka's outcome for "stopped by terminal event 0" (stopping events report -1 - index)
+CHUNK_FLIGHTS = 64  # a propagation runs to 64 flight bounds ahead (run), then the flight bound is checked
 
 
 def spring_law(params, cfg) -> tuple[float, float, float, float]:
@@ -97,11 +104,15 @@ def spring_law(params, cfg) -> tuple[float, float, float, float]:
 
 
 @functools.cache
-def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accuracy: bool):
+def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accuracy: bool, checked: bool = True):
     """The compiled heyoka integrator for exponents (a, b) (built once per process and setting).
 
-    Returns ``(ta, upward)``: the integrator and the list its non-terminal event appends the
-    times of upward crossings of x = 0 to (cleared by the caller)."""
+    The floor x = 0 downwards is a terminal event whose callback applies the impact rule, so heyoka
+    goes from flight to flight without returning to Python: for :func:`run` (``checked``) a
+    :class:`_Flights`, with a non-terminal event on x = 0 upwards appending its time to the list
+    ``upward`` (missed_impact (b)); for :func:`impacts` an :class:`_ImpactRule` and no other event.
+    Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at construction;
+    the copy is given the shared ``upward`` list)."""
     x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
     gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
     xi = xi_eq + eta
@@ -119,12 +130,140 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
         upward.append(t)
 
     kw = {} if cooldown is None else {"cooldown": float(cooldown)}
-    floor = hy.t_event(x, direction=hy.event_direction.negative, **kw)
-    rise = hy.nt_event(x, on_upward, direction=hy.event_direction.positive)
+    floor = hy.t_event(x, callback=_Flights() if checked else _ImpactRule(), direction=hy.event_direction.negative,
+                       **kw)
+    rise = [hy.nt_event(x, on_upward, direction=hy.event_direction.positive)] if checked else []
     ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
-                            t_events=[floor], nt_events=[rise], pars=[0.0] * 4, tol=tol,
+                            t_events=[floor], nt_events=rise, pars=[0.0] * 4, tol=tol,
                             high_accuracy=high_accuracy)
-    return ta, upward  # heyoka deep-copies callbacks, but a function deep-copies to itself: same list
+    callback = ta.t_events[0].callback
+    callback.upward = upward  # a function deep-copies to itself: on_upward appends to this list
+    return ta, callback
+
+
+class _ImpactRule:
+    """Terminal-event callback of :func:`impacts`: at every downward crossing of x = 0 it applies the impact
+    rule (eq. ``collision-rule``: x -> 0, x' -> -x', xi' -> x' + xi', eta kept) in place and records
+    the impact; it stops the propagation (returns False) at ``limit`` impacts."""
+
+    def __init__(self):
+        self.reset(0)
+
+    def reset(self, limit):
+        self.limit = limit
+        self.t, self.u, self.v, self.eta = [], [], [], []
+
+    def impact(self, ta):
+        """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi') after it."""
+        s = ta.state
+        u, v = s[1], s[2]
+        s[0] = 0.0
+        s[1] = -u
+        s[2] = u + v
+        return -u, u + v
+
+    def record(self, t, u, v, eta):
+        self.t.append(t)
+        self.u.append(u)
+        self.v.append(v)
+        self.eta.append(eta)
+
+    def __call__(self, ta, d_sgn):
+        u, v = self.impact(ta)
+        self.record(ta.time, u, v, ta.state[3])
+        return len(self.t) < self.limit
+
+
+class _Flights(_ImpactRule):
+    """The floor event's callback in :func:`run`: the impact rule and its record (:class:`_ImpactRule`), and
+    the per-flight checks of the module docstring: it stops the propagation (returns False) at
+    ``limit`` impacts or on a failure, which it notes in ``failure``, ``index``, ``reason``: an upward
+    crossing inside the flight, too many zero-length flights, the CPU budget.  ``priming``: the event
+    of :func:`_start`'s restart at t = 0, not an impact."""
+
+    def __init__(self):
+        self.upward = []
+        self.reset(0)
+
+    def reset(self, limit, budget=math.inf, start=0.0):
+        super().reset(limit)
+        self.t_prev, self.budget, self.start = 0.0, budget, start
+        self.note("", -1, "")
+        self.n_short = 0
+        self.priming = False
+
+    def __call__(self, ta, d_sgn):
+        u, v = self.impact(ta)
+        if self.priming:
+            self.priming = False
+            return False
+        up = self.upward
+        if up:
+            if len(up) == 1 and up[0] == self.t_prev:  # the restart after the last impact (fast path)
+                up.clear()
+            elif self.inside():
+                return False
+        t = ta.time
+        tau = t - self.t_prev
+        self.t_prev = t
+        self.record(t, u, v, ta.state[3])
+        n = len(self.t)
+        self.n_short = self.n_short + 1 if tau < STALL_DT else 0
+        if self.n_short > STALL_COUNT:
+            self.note("stall", n - 1, "zero-length flights: the event re-triggers")
+            return False
+        if n >= self.limit:
+            return False
+        if self.budget < math.inf and time.process_time() - self.start > self.budget:
+            self.note("budget", n, "CPU budget exhausted")
+            return False
+        return True
+
+    def note(self, failure, index, reason):
+        self.failure, self.index, self.reason = failure, index, reason
+
+    def inside(self):
+        """missed_impact (b): an upward crossing of x = 0 inside a flight, i.e. at t > 0 and not at the restart
+        of the last impact (noted, the impacts from that flight's end on dropped; the list is cleared).
+        Checked at every impact and at the end, so that a crossing heyoka reports after the terminal event
+        of its step is still seen (then at the next impact, earlier than the last one)."""
+        inside = [t for t in self.upward if t > 0.0 and t != self.t_prev]
+        self.upward.clear()
+        if inside:
+            k = bisect.bisect_left(self.t, inside[0])
+            for column in (self.t, self.u, self.v, self.eta):
+                del column[k:]
+            self.note("missed_impact", k,
+                      f"x rose through the floor at t = {inside[0]!r} inside a flight: a dip below it was skipped")
+        return bool(inside)
+
+
+def impacts(params, initial, max_events, t_end, setting=None):
+    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu)``.
+
+    One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
+    (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
+    adds its failure checks (an upward event on x = 0, the checks of :class:`_Flights`, the flight bound
+    between propagations): ~6 against ~4 us per Hertz impact from impact 1e3 on.  Here nothing is
+    checked: a skipped impact shows as fewer than ``max_events`` impacts by
+    ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
+    which the caller compares.  ``cpu`` is the process time of the propagation alone.
+    """
+    cfg = _setting(setting)
+    rho, pa, pb, xi_eq = spring_law(params, cfg)
+    dev = initial.deviations(params)
+    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
+    ta, rule = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]), checked=False)
+    ta.pars[:] = [params.gamma, params.mu, rho, xi_eq]
+    ta.time = 0.0
+    ta.reset_cooldowns()
+    rule.reset(1)  # _start's own event at t = 0 (a restart from the floor) must not count
+    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
+    rule.reset(max_events)
+    start = time.process_time()
+    ta.propagate_until(t_end)
+    cpu = time.process_time() - start
+    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu
 
 
 def _setting(setting):
@@ -173,78 +312,61 @@ def _active_cooldown(ta):
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
-    """heyoka restart loop; see the module docstring for the settings and failure rules."""
+    """heyoka from flight to flight (the impact rule and the checks in the floor event's callback,
+    :class:`_Flights`), in propagations of CHUNK_FLIGHTS flight bounds; see the module docstring for the
+    settings and failure rules."""
     cfg = _setting(setting)
     rho, pa, pb, xi_eq = spring_law(params, cfg)
     gamma, mu = params.gamma, params.mu
     dev = initial.deviations(params)
     # the core's eta is xi - params.xi_eq; re-reference it if the setting chose another law
     eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
-    ta, upward = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]))
+    ta, flights = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]))
     ta.pars[:] = [gamma, mu, rho, xi_eq]
     ta.time = 0.0
     ta.reset_cooldowns()
+    flights.reset(max_events, float(cfg["cpu_budget"]))
+    flights.priming = True
     _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
-    upward.clear()
+    flights.priming = False
+    flights.upward.clear()
     samples = None if sample_times is None else np.asarray(sample_times, dtype=float)
     y_out = None if samples is None else np.full(samples.shape, np.nan)
-    t_imp, u_after, v_after, e_imp, steps = [], [], [], [], []
-    failure, failure_index, reason = "", -1, ""
-    n_short = 0
-    t_prev = 0.0
-    budget = float(cfg["cpu_budget"])
-    start = time.process_time()
-    while len(t_imp) < max_events:
-        if time.process_time() - start > budget:
-            failure, failure_index, reason = "budget", len(t_imp), "CPU budget exhausted"
-            break
+    steps, outcome = 0, None
+    start = flights.start = time.process_time()
+    while len(flights.t) < max_events and ta.time < t_max:
+        t0 = ta.time
         x, u, v, eta = ta.state
-        bound = t_prev + flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa)
-        t_stop = min(bound, t_max)
-        dense = samples is not None and bool(np.any((samples >= t_prev) & (samples <= t_stop)))
+        t_stop = min(t_max, t0 + CHUNK_FLIGHTS * flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa))
+        dense = samples is not None and bool(np.any((samples >= t0) & (samples <= t_stop)))
         outcome, _, _, nsteps, c_out, _ = ta.propagate_until(t_stop, c_output=dense)
-        steps.append(nsteps)
-        code = int(outcome)
+        steps += nsteps
         if dense and c_out is not None:
-            m = (samples >= t_prev) & (samples <= ta.time)
+            m = (samples >= t0) & (samples <= ta.time)
             if m.any():
                 s = c_out(samples[m])
                 y_out[m] = 1.0 + 2.0 * xi_eq + s[:, 0] + 2.0 * s[:, 3]
-        inside = [t for t in upward if t > t_prev]
-        upward.clear()
-        if inside:
-            failure, failure_index = "missed_impact", len(t_imp)
-            reason = f"x rose through the floor at t = {inside[0]!r} inside a flight: a dip below it was skipped"
+        if outcome != hy.taylor_outcome.time_limit or flights.failure:
             break
-        if code == EVENT_STOP:
-            x, u, v, eta = ta.state
-            ta.state[:] = [0.0, -u, u + v, eta]  # impact: psi' <-> xi' (x' < 0 at a downward crossing)
-            tau = ta.time - t_prev
-            t_prev = ta.time
-            t_imp.append(t_prev)
-            u_after.append(-u)
-            v_after.append(u + v)
-            e_imp.append(eta)
-            n_short = n_short + 1 if tau < STALL_DT else 0
-            if n_short > STALL_COUNT:
-                failure, failure_index, reason = "stall", len(t_imp) - 1, "zero-length flights: the event re-triggers"
-                break
-            continue
-        if outcome == hy.taylor_outcome.time_limit:
-            if t_stop == t_max and t_max < bound:
-                break  # reached t_max
-            failure, failure_index = "missed_impact", len(t_imp)
-            reason = f"no event before the flight bound t = {bound!r} (x = {ta.state[0]!r}): an impact was skipped"
+        # missed_impact (a): the flight under way has outlived the bound from its start
+        k = len(flights.t)
+        x, u, v, eta = (dev.x, dev.xdot, dev.xidot, eta0) if k == 0 else (
+            0.0, flights.u[-1], flights.v[-1], flights.eta[-1])
+        bound = flights.t_prev + flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa)
+        if ta.time > bound:
+            flights.note("missed_impact", k, f"no event before the flight bound t = {bound!r} "
+                         f"(x = {ta.state[0]!r}): an impact was skipped")
             break
-        failure, failure_index = "stall", len(t_imp)
-        reason = f"heyoka stopped with {outcome!r} at t = {ta.time!r} (state {list(ta.state)!r})"
-        break
     cpu = time.process_time() - start
+    if outcome is not None and not flights.failure and not (flights.upward and flights.inside()):
+        if int(outcome) != EVENT_STOP and outcome != hy.taylor_outcome.time_limit:
+            flights.note("stall", len(flights.t),
+                         f"heyoka stopped with {outcome!r} at t = {ta.time!r} (state {list(ta.state)!r})")
     return MethodResult(
-        method="heyoka", setting=dict(setting or {}), t=np.array(t_imp), xdot=np.array(u_after), cpu_time=cpu,
-        failure=failure, failure_index=failure_index, t_end=t_prev, y=y_out,
-        extra={"xidot": np.array(v_after), "eta": np.array(e_imp), "steps": np.array(steps), "reason": reason,
-               "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta),
+        method="heyoka", setting=dict(setting or {}), t=np.array(flights.t), xdot=np.array(flights.u),
+        cpu_time=cpu, failure=flights.failure, failure_index=flights.index, t_end=flights.t_prev, y=y_out,
+        extra={"xidot": np.array(flights.v), "eta": np.array(flights.eta), "steps": steps,
+               "reason": flights.reason, "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta),
                "start": {"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": eta0, "xi_eq": xi_eq}},
     )
 
