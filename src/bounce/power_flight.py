@@ -186,8 +186,10 @@ THETA_ROOT = 0.53
 #: the hot path's window over its predicted flight (short_flight): 1/16 above the cubic model's root.
 WINDOW = 17.0 / 16.0
 #: the hot path forms the comparison radius of eq. (C) only where the cheap radius needs a degree above this
-#: (its one evaluation costs about two degrees of the series: :func:`_hot_degree`).
-ONCE_ABOVE = 12
+#: (:func:`_hot_degree`; its one or two evaluations of the series of (C) cost about as much as several degrees
+#: of the Hertz series: instructions per impact of the Hertz drop, impacts 5e3 .. 2e4, with 12 / 16 / 20:
+#: 7353, 5152 (main, always formed where the cheap one fails) -> 6629, 5154 / 6218, 5036 / 6625, 4838).
+ONCE_ABOVE = 16
 #: status: the hot path hands over to the general stepper.
 HANDOVER = 4
 #: status: the flight starts at rest on the floor and the mass stays (at_rest_is_sticky): a sticky state.
@@ -786,7 +788,7 @@ def _hot_degree(h, w0, v, p0, q0, tol_x, tol_v, law):
     The cheap first radius (:func:`bounce.power_series.cauchy_radius`) first; where it gives no
     degree <= ONCE_ABOVE, the one-shot comparison radius of eq. (C)
     (:func:`bounce.power_series.step_radius`, ~2x near the spring's turning point; it costs about
-    as much as ~2 degrees of the series, so deep in the asymptotic regime, where the degree is
+    as much as several degrees of the series, so deep in the asymptotic regime, where the degree is
     low, it is not formed).
     """
     radius, Rz, Rp = cauchy_radius(w0, v, p0, q0, 0.0, law[L_RHO], law[L_MU], law)
