@@ -177,7 +177,10 @@ def dips(draw):
     return spring, gamma, mu, xi, v, depth, T
 
 
-@SETTINGS
+# ~3/4 of the drawn dips integrate back to a start below the floor and are filtered (assume): by design,
+# and near hypothesis's filter_too_much threshold, which the drawn sequence crossed in some collections
+# of the suite (8 valid of 58); the test still runs max_examples valid dips
+@settings(SETTINGS, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(dips())
 def test_constructed_dips_are_not_skipped(case):
     """Integrate back from a dip bottom x = -d < 0 to a start state with x > 0: the solver's first
