@@ -13,10 +13,10 @@ linear law is then the linear system, no powers).  Set up as the issue asks for 
 
 * compiled once per (a, b, tol, cooldown, high_accuracy) and reused (``functools.cache``);
   gamma, mu, rho, xi_eq are runtime parameters, the state and time are reset per run;
-* a terminal event on x = 0 with direction negative (no callback: it stops ``propagate_until``);
-  at each stop the impact rule (eq. ``collision-rule``: psi' and xi' exchanged) is applied in
-  place: x -> 0, u -> -u, v -> u + v, eta unchanged; the event's cooldown is heyoka's own unless
-  the ``cooldown`` setting gives one;
+* a terminal event on x = 0 with direction negative whose callback applies the impact rule
+  (eq. ``collision-rule``: psi' and xi' exchanged) in place, x -> 0, u -> -u, v -> u + v, eta
+  unchanged, and returns True, so heyoka goes on to the next flight without returning to Python;
+  the event's cooldown is heyoka's own unless the ``cooldown`` setting gives one;
 * tolerance 2^-52 (machine precision) unless ``tol`` says otherwise.
 
 Failure detection (from the integrator's own output):
@@ -34,7 +34,7 @@ Failure detection (from the integrator's own output):
     length, e.g. the paper's drop with xi(0) = xi'(0) = 0, fails at once for a, b > 0), a
     propagation ended by heyoka's step limit, or more than 50 consecutive flights shorter than
     1e-12 (zero-length flights: the restart re-triggering).
-``budget``         process time over ``cpu_budget`` seconds (checked between flights).
+``budget``         process time over ``cpu_budget`` seconds (checked at every impact when finite).
 
 ``extra`` carries the post-impact ``xidot`` and ``eta`` (for one-step errors against the
 references), ``steps`` (heyoka's steps in all), the cooldown heyoka used, ``start`` (the state it integrated
