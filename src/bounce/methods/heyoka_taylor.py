@@ -81,7 +81,9 @@ DEFAULTS = {"rho": None, "a": None, "b": None, "tol": 2.0**-52, "cooldown": None
 STALL_DT = 1e-12
 STALL_COUNT = 50
 EVENT_STOP = -1  # heyoka's outcome for "stopped by terminal event 0" (stopping events report -1 - index)
-CHUNK_FLIGHTS = 64  # a propagation runs to 64 flight bounds ahead (run), then the flight bound is checked
+#: a propagation of run() ends 64 flight bounds ahead: the flight bound is checked there, and no heyoka step
+#: is longer (its event detection fails on steps ~1e8 long, :func:`impacts`)
+CHUNK_FLIGHTS = 64
 
 
 def spring_law(params, cfg) -> tuple[float, float, float, float]:
@@ -247,7 +249,10 @@ def impacts(params, initial, max_events, t_end, setting=None):
     between propagations): ~6 against ~4 us per Hertz impact from impact 1e3 on.  Here nothing is
     checked: a skipped impact shows as fewer than ``max_events`` impacts by
     ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
-    which the caller compares.  ``cpu`` is the process time of the propagation alone.
+    which the caller compares.  ``cpu`` is the process time of the propagation alone.  ``t_end`` should
+    be finite and of the order of the run: heyoka's event detection fails (EDOM in its root finder,
+    every event missed) on a step ~1e8 long, which a flight whose x is an exact polynomial (the linear
+    spring at rest) takes; :func:`run` propagates by CHUNK_FLIGHTS flight bounds for that reason.
     """
     cfg = _setting(setting)
     rho, pa, pb, xi_eq = spring_law(params, cfg)
