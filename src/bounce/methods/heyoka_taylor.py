@@ -154,6 +154,7 @@ class _ImpactRule:
     def reset(self, limit):
         self.limit = limit
         self.t, self.u, self.v, self.eta = [], [], [], []
+        self.priming = False  # True during _start's restart at t = 0: that event is not an impact
 
     def impact(self, ta):
         """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi') after it."""
@@ -172,6 +173,9 @@ class _ImpactRule:
 
     def __call__(self, ta, d_sgn):
         u, v = self.impact(ta)
+        if self.priming:
+            self.priming = False
+            return False
         self.record(ta.time, u, v, ta.state[3])
         return len(self.t) < self.limit
 
@@ -180,8 +184,7 @@ class _Flights(_ImpactRule):
     """The floor event's callback in :func:`run`: the impact rule and its record (:class:`_ImpactRule`), and
     the per-flight checks of the module docstring: it stops the propagation (returns False) at
     ``limit`` impacts or on a failure, which it notes in ``failure``, ``index``, ``reason``: an upward
-    crossing inside the flight, too many zero-length flights, the CPU budget.  ``priming``: the event
-    of :func:`_start`'s restart at t = 0, not an impact."""
+    crossing inside the flight, too many zero-length flights, the CPU budget."""
 
     def __init__(self):
         self.upward = []
@@ -192,7 +195,6 @@ class _Flights(_ImpactRule):
         self.t_prev, self.budget, self.start = 0.0, budget, start
         self.note("", -1, "")
         self.n_short = 0
-        self.priming = False
 
     def __call__(self, ta, d_sgn):
         u, v = self.impact(ta)
@@ -240,6 +242,26 @@ class _Flights(_ImpactRule):
         return bool(inside)
 
 
+def _started(params, initial, setting, checked):
+    """(ta, callback, (rho, a, b, xi_eq), dev, eta0): the integrator of :func:`integrator` with the setting's
+    law and parameters, time 0, its callback reset, at the start state (:func:`_start`)."""
+    cfg = _setting(setting)
+    rho, pa, pb, xi_eq = spring_law(params, cfg)
+    dev = initial.deviations(params)
+    # the core's eta is xi - params.xi_eq; re-reference it if the setting chose another law
+    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
+    ta, callback = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]), checked)
+    ta.pars[:] = [params.gamma, params.mu, rho, xi_eq]
+    ta.time = 0.0
+    ta.reset_cooldowns()
+    callback.reset(0)
+    callback.priming = True
+    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
+    callback.priming = False
+    callback.upward.clear()
+    return ta, callback, cfg, (rho, pa, pb, xi_eq), dev, eta0
+
+
 def impacts(params, initial, max_events, t_end, setting=None):
     """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu)``.
 
@@ -254,16 +276,7 @@ def impacts(params, initial, max_events, t_end, setting=None):
     every event missed) on a step ~1e8 long, which a flight whose x is an exact polynomial (the linear
     spring at rest) takes; :func:`run` propagates by CHUNK_FLIGHTS flight bounds for that reason.
     """
-    cfg = _setting(setting)
-    rho, pa, pb, xi_eq = spring_law(params, cfg)
-    dev = initial.deviations(params)
-    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
-    ta, rule = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]), checked=False)
-    ta.pars[:] = [params.gamma, params.mu, rho, xi_eq]
-    ta.time = 0.0
-    ta.reset_cooldowns()
-    rule.reset(1)  # _start's own event at t = 0 (a restart from the floor) must not count
-    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
+    ta, rule, _, _, _, _ = _started(params, initial, setting, checked=False)
     rule.reset(max_events)
     start = time.process_time()
     ta.propagate_until(t_end)
@@ -320,21 +333,9 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     """heyoka from flight to flight (the impact rule and the checks in the floor event's callback,
     :class:`_Flights`), in propagations of CHUNK_FLIGHTS flight bounds; see the module docstring for the
     settings and failure rules."""
-    cfg = _setting(setting)
-    rho, pa, pb, xi_eq = spring_law(params, cfg)
-    gamma, mu = params.gamma, params.mu
-    dev = initial.deviations(params)
-    # the core's eta is xi - params.xi_eq; re-reference it if the setting chose another law
-    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
-    ta, flights = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]))
-    ta.pars[:] = [gamma, mu, rho, xi_eq]
-    ta.time = 0.0
-    ta.reset_cooldowns()
+    ta, flights, cfg, (rho, pa, pb, xi_eq), dev, eta0 = _started(params, initial, setting, checked=True)
+    gamma = params.gamma
     flights.reset(max_events, float(cfg["cpu_budget"]))
-    flights.priming = True
-    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
-    flights.priming = False
-    flights.upward.clear()
     samples = None if sample_times is None else np.asarray(sample_times, dtype=float)
     y_out = None if samples is None else np.full(samples.shape, np.nan)
     steps, outcome = 0, None
