@@ -781,6 +781,37 @@ def _root_update(dt, vs, gamma, D, Dp, D2, D3):
 
 
 @njit(cache=True)
+def _certified_root(s, s_max, t0, x, w, u, gamma, B, K, X, iterations):
+    """The hot path's root in a series step that starts at time t0 of a flight from the floor (x'(0) = u)
+    in state (x, w = x'): Newton steps dt = -x/x' from the predictor s (time from the step's start),
+    at most ``iterations``, inside (0, s_max].
+
+    Accepted only when certified (as in :func:`bounce.short_flight.short_flight`), with t = t0 + s the
+    time from the floor and B the flight's curvature bound: (i) B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|),
+    so x > 0 on (0, t) (the parabolas x >= u r - B r^2/2 from the floor and x >= x(t) + |x'(t)| r - B r^2/2
+    backwards from t cover it), and (ii) B dt^2 <= 8 eps scale, so |x(t + dt)| <= B dt^2/2 is below the
+    rounding level of x; the root is then carried there to second order (:func:`_root_update`).  Returns
+    (s, scale, D, D', D'', D''') at the root (D'' and D''' at the last Newton point), or s = 0 when no
+    step is certified (the caller hands over or marches).
+    """
+    for _ in range(iterations):
+        if not 0.0 < s <= s_max:
+            break
+        xs, vs, scale, D, Dp = _evaluate(s, x, 0.0, w, 0.0, gamma, 1.0, K, X)
+        if not vs < 0.0:
+            break
+        dt = -xs / vs
+        if B * dt * dt <= 8.0 * EPS * scale:
+            if B * ((t0 + s) - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
+                D2, D3 = curvature(s, 1.0, K, X)
+                d, D, Dp = _root_update(dt, vs, gamma, D, Dp, D2, D3)
+                return s + d, scale, D, Dp, D2, D3
+            break
+        s += dt
+    return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
 def _hot_degree(h, w0, v, p0, q0, tol_x, tol_v, law):
     """(K, r_c, Rz, Rp) of a hot-path step of length h (:func:`_short_degree`; K = 0: none, and then
     r_c is the larger radius).
@@ -816,10 +847,8 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
 
     No root is skipped.  The steps before the last end before 2u/B (else HANDOVER), where the parabola
     x >= u s - B s^2/2 of the flight's curvature bound B keeps x > 0: they need no evaluation but their
-    end.  In the last step Newton steps from the cubic model's root t_p, certified exactly as in
-    :func:`short_flight` with t the time from the flight's start: (i) B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|)
-    (the parabola from 0 and the one backwards from t cover (0, t)), (ii) B dt^2 <= 8 eps scale;
-    otherwise HANDOVER.
+    end.  In the last step the root is found from the cubic model's root t_p and certified by
+    :func:`_certified_root` (with the time from the flight's start); otherwise HANDOVER.
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]
@@ -857,23 +886,10 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
             vj += Dp
             tj += h
             continue
-        s = t_p - tj
-        for _ in range(6):
-            if not 0.0 < s <= T - tj:
-                break
-            xs, vs, scale, D, Dp = _evaluate(s, x, 0.0, w, 0.0, gamma, 1.0, K, X)
-            if not vs < 0.0:
-                break
-            dt = -xs / vs
-            if B * dt * dt <= 8.0 * EPS * scale:
-                if B * ((tj + s) - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
-                    D2, D3 = curvature(s, 1.0, K, X)
-                    d, D, Dp = _root_update(dt, vs, gamma, D, Dp, D2, D3)
-                    s += d
-                    return _contact(tj, 0.0, s, w - gamma * s - Dp, scale, ej, 0.0, vj, 0.0, gamma, D, Dp, 1.0, K, X,
-                                    (0.0, u, v, eta))
-                break
-            s += dt
+        s, scale, D, Dp, _, _ = _certified_root(t_p - tj, T - tj, tj, x, w, u, gamma, B, K, X, 6)
+        if s > 0.0:
+            return _contact(tj, 0.0, s, w - gamma * s - Dp, scale, ej, 0.0, vj, 0.0, gamma, D, Dp, 1.0, K, X,
+                            (0.0, u, v, eta))
     return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
@@ -910,12 +926,8 @@ def short_flight(u, v, eta, law, X, P, Q):
     poor predictor costs time, never an impact.  Degree K <= DEGREE_SHORT the least for which the
     tail bounds on [0, T] are below 2^-55 u T (x) and 2^-55 u (x'), with the cheap first radius
     or the one-shot comparison radius of eq. (C) (:func:`_hot_degree`); else two or three steps
-    (:func:`_split_flight`) or HANDOVER.  From t_p, Newton steps dt = -x/x', each certified
-    as in :func:`bounce.short_flight.short_flight`: (i) x > 0 on (0, t) because
-    B (t + 2|dt| [x < 0]) <= 2 (u + |x'(t)|) (the two parabolas x >= u s - B s^2/2
-    from 0 and x >= x_p + |v_p| r - B r^2/2 backwards from t_p cover (0, t)), and
-    (ii) |x(t + dt)| <= B dt^2/2 below the rounding level of x; the root is then t + dt to second
-    order (:func:`_root_update`).  Otherwise the safe march.
+    (:func:`_split_flight`) or HANDOVER.  From t_p, Newton steps certified as in
+    :func:`bounce.short_flight.short_flight` (:func:`_certified_root`).  Otherwise the safe march.
     """
     gamma = law[L_GAMMA]
     rho = law[L_RHO]
@@ -940,22 +952,9 @@ def short_flight(u, v, eta, law, X, P, Q):
             return _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp)
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     taylor_coefficients(xi0, w0, v, p0, q0, rho * sigma * p0, rho, mu, law, 1.0, K, X, P, Q)
-    t = t_p
-    for _ in range(4):
-        if not 0.0 < t <= T:
-            break
-        xs, vs, scale, D, Dp = _evaluate(t, 0.0, 0.0, u, 0.0, gamma, 1.0, K, X)
-        if not vs < 0.0:
-            break
-        dt = -xs / vs
-        if B * dt * dt <= 8.0 * EPS * scale:
-            if B * (t - 2.0 * min(dt, 0.0)) <= 2.0 * (u - vs):
-                D2, D3 = curvature(t, 1.0, K, X)
-                d, D, Dp = _root_update(dt, vs, gamma, D, Dp, D2, D3)
-                t += d
-                return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
-            break
-        t += dt
+    t, scale, D, Dp, D2, D3 = _certified_root(t_p, T, 0.0, 0.0, u, u, gamma, B, K, X, 4)
+    if t > 0.0:
+        return FOUND, t, u - gamma * t - Dp, scale, eta + v * t + D, v + Dp, -gamma - D2, -D3
     # general march from the first safe step
     s = 2.0 * u / B
     if s > T:
