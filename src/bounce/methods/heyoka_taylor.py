@@ -29,15 +29,17 @@ Failure detection (from the integrator's own output):
     practice: one that fell inside the event's cooldown); (b) x has a minimum below the floor inside a
     flight: a non-terminal event on x' = u = 0 with direction positive (an interior minimum of x) whose
     callback finds x < 0 there (x at that time from heyoka's dense output): x went down through the floor
-    and turned, so the downward crossing before it was an impact the event detection skipped.  At least as
+    and turned, so the downward crossing before it was an impact the event detection skipped (noted at the
+    flight's terminal event or at the end of the propagation, there before (a)).  At least as
     strong as the event on x = 0 upwards it replaces (which fired at the restart after every impact, x = 0
     with x' > 0: one Python callback per impact): a dip that comes back up through the floor has its minimum
     below the floor first, in the same flight (the same impact index is reported, earlier); a dip that turns
     below the floor and falls again is caught here, there only by (a); a dip that never turns (x falls on)
     is left to (a) by both.  Weaker only where heyoka's root finder would miss the root of x' at the
     minimum (there the old one would miss the root of x at the crossing alike) or where the dense output
-    rounds a dip ~eps |x| deep to x >= 0.  It never fires at a restart (x' > 0) nor in the asymptotic
-    regime (x' falls monotonically: x'' = -gamma - xi'' with |xi''| << gamma).
+    rounds a dip ~eps |x| deep to x >= 0 (and a graze of the floor within rounding may be flagged).  It
+    never fires at a restart (x' > 0) nor in the asymptotic regime (x' falls monotonically there:
+    x'' = -gamma - xi'' with |xi''| << gamma), so deep it costs no Python callback, only heyoka's root search.
 ``stall``          the integrator's state became non-finite (``err_nf_state``: the Taylor
     coefficients of (xi^2)^(p/2) divide by xi^2, so a flight with the spring exactly at rest
     length, e.g. the paper's drop with xi(0) = xi'(0) = 0, fails at once for a, b > 0), a
@@ -56,9 +58,13 @@ core of a shared machine, load 1.8-3.2, medians of 5; numbers in results/timing/
 in its fastest use (:func:`impacts`: one propagation, the impact rule in the event callback): 2.5e5
 impacts/s in the asymptotic regime (bounce 2.6e6, 10.5x), 3e3-3e5 in the drop's first 1e4 impacts, whose
 long flights cross the rest length xi = 0 (there bounce is 0.9-1.8x heyoka: both take Taylor steps of
-similar cost, bounce about half as many; over the first 2e4 impacts 1.8x); through :func:`run`, with
-the failure checks below, ~6 us per impact deep against 4 (the upward event and the callback's checks;
-run returned to Python after every flight until 2026-11, 18 us per impact);
+similar cost, bounce about half as many; over the first 2e4 impacts 1.8x), measured before the impact
+rule read heyoka's state once (2026-11: 0.3-0.7 us less per impact since, interleaved medians); through
+:func:`run`, with the failure checks above, 1.25x impacts()' CPU per impact deep and over the drop's
+first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the drop: interleaved medians of 11,
+load 1.9; ``bench_power.py --long 0``: 1.8e5 against 2.2e5 impacts/s deep); with the event on x = 0
+upwards that (b) replaced, a Python callback at every restart, 1.5x deep and 1.4x on the drop, and
+18 us per impact deep when run returned to Python after every flight (until 2026-11);
 one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
@@ -275,8 +281,8 @@ def impacts(params, initial, max_events, t_end, setting=None):
 
     One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
     (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
-    adds its failure checks (an upward event on x = 0, the checks of :class:`_Flights`, the flight bound
-    between propagations): ~6 against ~4 us per Hertz impact from impact 1e3 on.  Here nothing is
+    adds its failure checks (a non-terminal event on x' = 0, the checks of :class:`_Flights`, the flight
+    bound between propagations): 1.25x the CPU per Hertz impact (module docstring).  Here nothing is
     checked: a skipped impact shows as fewer than ``max_events`` impacts by
     ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
     which the caller compares.  ``cpu`` is the process time of the propagation alone.  ``t_end`` should
