@@ -243,7 +243,7 @@ class _Flights(_ImpactRule):
         """missed_impact (b): x had a minimum below the floor inside a flight (noted; the impacts from the end of
         the flight that holds it on are dropped).  heyoka calls a step's non-terminal callbacks before its
         terminal one and drops those after the terminal event, so that flight is the one under way: the
-        impact whose callback sees the dip is not recorded.  Checked at every impact and at the end of run."""
+        impact whose callback sees the dip is not recorded.  Checked at every impact and after every propagation."""
         if not self.dips:
             return False
         t_dip = self.dips[0]
