@@ -16,7 +16,7 @@ Measured per scene, in this run:
    same ``--heyoka-events`` impacts from the same start (the ratio is taken there; heyoka in its
    fastest use, :func:`bounce.methods.heyoka_taylor.impacts`: one propagation with the impact rule in
    its event callback, all impacts found; heyoka through
-   ``heyoka_taylor.run``, with its failure checks, is printed beside it: ~2 us more per impact deep;
+   ``heyoka_taylor.run``, with its failure checks, is printed beside it: ~1 us more per impact deep, 1.25x;
    and heyoka at its most accurate setting ``ACCURATE``, tol 1e-18 with high_accuracy), and bounce alone
    over ``--events`` impacts (after a warm-up call: no JIT compile in any timing); and along the
    drop by windows of impact indices ``WINDOWS`` (both from bounce's exact state at the window's

@@ -139,6 +139,28 @@ def test_automatic_cooldown_outlasts_the_flights_below_its_threshold():
     assert below.failure == "missed_impact" and below.failure_index == 0
 
 
+@pytest.mark.parametrize("start, cooldown, k", [
+    (Deviations(0.02, 0.0, 0.0, -0.2), 1.2, 1),  # flight 1 (0.98 long) dips and comes back up through the floor
+    (Deviations(0.0, 0.2, -0.3, 0.0), 3.0, 0),  # flight 0 (2.1) dips, turns at x ~ -0.9 and falls again
+])
+def test_skipped_dip_is_a_missed_impact(start, cooldown, k):
+    """missed_impact (b): a fixed cooldown longer than flight k, whose x goes down through the floor and then
+    turns (the spring pulls the lower mass up), skips impact k; x then has a minimum below the floor inside
+    the flight, reported as the missed impact k with the impacts before it kept.  The second start never
+    comes back up to the floor, so an event on x = 0 upwards (this check until 2026-11) would not have
+    fired: only the flight bound (a) would have seen it.  With heyoka's own cooldown both starts run clean
+    and find the exact solver's impacts."""
+    p = Parameters(GAMMA, MU)
+    exact = simulate(p, start, max_events=4)
+    assert exact.tau[k] < cooldown  # the cooldown armed at impact k - 1 (k = 0: the restart) covers flight k
+    clean = run(p, start, max_events=4)
+    assert clean.failure == "" and rel(clean.t, exact.t).max() < 1e-12
+    res = run(p, start, {"cooldown": cooldown}, max_events=4)
+    assert res.failure == "missed_impact" and res.failure_index == k
+    assert "minimum below the floor" in res.extra["reason"]
+    assert len(res.t) == k and rel(res.t, exact.t[:k]).max(initial=0.0) < 1e-12
+
+
 @pytest.mark.parametrize("setting, word", [({"tol": 0.0}, "tol"), ({"cooldown": -1.0}, "cooldown"),
                                            ({"rho": -1.0}, "rho"), ({"a": float("nan")}, "a"),
                                            ({"tolerance": 1e-9}, "unknown")])

@@ -26,9 +26,20 @@ Failure detection (from the integrator's own output):
     xi'^2/2 + rho |xi|^(a+2)/(a+2), which does not increase in flight (eq. ``nonlin-energy``),
     so x < 0 after that time: checked at the end of every propagation (each runs CHUNK_FLIGHTS = 64
     flight bounds ahead), a flight still under way past it has stepped over an impact (in
-    practice: one that fell inside the event's cooldown); (b) a non-terminal event on x = 0 with
-    direction positive fires strictly inside a flight: x came back up through the floor, so the
-    dip below it was an impact the event detection skipped.
+    practice: one that fell inside the event's cooldown); (b) x has a minimum below the floor inside a
+    flight: a non-terminal event on x' = u = 0 with direction positive (an interior minimum of x) whose
+    callback finds x < 0 there (x at that time from heyoka's dense output): x went down through the floor
+    and turned, so the downward crossing before it was an impact the event detection skipped (noted at the
+    flight's terminal event or at the end of the propagation, there before (a)).  At least as
+    strong as the event on x = 0 upwards it replaces (which fired at the restart after every impact, x = 0
+    with x' > 0: one Python callback per impact): a dip that comes back up through the floor has its minimum
+    below the floor first, in the same flight (the same impact index is reported, earlier); a dip that turns
+    below the floor and falls again is caught here, there only by (a); a dip that never turns (x falls on)
+    is left to (a) by both.  Weaker only where heyoka's root finder would miss the root of x' at the
+    minimum (there the old one would miss the root of x at the crossing alike) or where the dense output
+    rounds a dip ~eps |x| deep to x >= 0 (and a graze of the floor within rounding may be flagged).  It
+    never fires at a restart (x' > 0) nor in the asymptotic regime (x' falls monotonically there:
+    x'' = -gamma - xi'' with |xi''| << gamma), so deep it costs no Python callback, only heyoka's root search.
 ``stall``          the integrator's state became non-finite (``err_nf_state``: the Taylor
     coefficients of (xi^2)^(p/2) divide by xi^2, so a flight with the spring exactly at rest
     length, e.g. the paper's drop with xi(0) = xi'(0) = 0, fails at once for a, b > 0), a
@@ -47,9 +58,13 @@ core of a shared machine, load 1.8-3.2, medians of 5; numbers in results/timing/
 in its fastest use (:func:`impacts`: one propagation, the impact rule in the event callback): 2.5e5
 impacts/s in the asymptotic regime (bounce 2.6e6, 10.5x), 3e3-3e5 in the drop's first 1e4 impacts, whose
 long flights cross the rest length xi = 0 (there bounce is 0.9-1.8x heyoka: both take Taylor steps of
-similar cost, bounce about half as many; over the first 2e4 impacts 1.8x); through :func:`run`, with
-the failure checks below, ~6 us per impact deep against 4 (the upward event and the callback's checks;
-run returned to Python after every flight until 2026-11, 18 us per impact);
+similar cost, bounce about half as many; over the first 2e4 impacts 1.8x), measured before the impact
+rule read heyoka's state once (2026-11: 0.3-0.7 us less per impact since, interleaved medians); through
+:func:`run`, with the failure checks above, 1.25x impacts()' CPU per impact deep and over the drop's
+first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the drop: interleaved medians of 11,
+load 1.9; ``bench_power.py --long 0``: 1.8e5 against 2.2e5 impacts/s deep); with the event on x = 0
+upwards that (b) replaced, a Python callback at every restart, 1.5x deep and 1.4x on the drop, and
+18 us per impact deep when run returned to Python after every flight (until 2026-11);
 one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
@@ -111,10 +126,10 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
 
     The floor x = 0 downwards is a terminal event whose callback applies the impact rule, so heyoka
     goes from flight to flight without returning to Python: for :func:`run` (``checked``) a
-    :class:`_Flights`, with a non-terminal event on x = 0 upwards appending its time to the list
-    ``upward`` (missed_impact (b)); for :func:`impacts` an :class:`_ImpactRule` and no other event.
-    Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at construction;
-    the copy is given the shared ``upward`` list)."""
+    :class:`_Flights`, with a non-terminal event on x' = u = 0 upwards (a minimum of x) appending its time to
+    the list ``dips`` when x < 0 there (missed_impact (b)); for :func:`impacts` an :class:`_ImpactRule` and no
+    other event.  Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at
+    construction; the copy is given the shared ``dips`` list)."""
     x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
     gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
     xi = xi_eq + eta
@@ -126,20 +141,21 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
     force = rho * xi if fa is None else rho * xi * fa
     damping = 2.0 * mu * v if fb is None else 2.0 * mu * v * fb
     xi2 = -force - damping
-    upward = []
+    dips = []
 
-    def on_upward(ta, t, d_sgn):
-        upward.append(t)
+    def on_minimum(ta, t, d_sgn):
+        if ta.update_d_output(t)[0] < 0.0:  # heyoka's state is the step's end: x at t from the dense output
+            dips.append(t)
 
     kw = {} if cooldown is None else {"cooldown": float(cooldown)}
     floor = hy.t_event(x, callback=_Flights() if checked else _ImpactRule(), direction=hy.event_direction.negative,
                        **kw)
-    rise = [hy.nt_event(x, on_upward, direction=hy.event_direction.positive)] if checked else []
+    minimum = [hy.nt_event(u, on_minimum, direction=hy.event_direction.positive)] if checked else []
     ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
-                            t_events=[floor], nt_events=rise, pars=[0.0] * 4, tol=tol,
+                            t_events=[floor], nt_events=minimum, pars=[0.0] * 4, tol=tol,
                             high_accuracy=high_accuracy)
     callback = ta.t_events[0].callback
-    callback.upward = upward  # a function deep-copies to itself: on_upward appends to this list
+    callback.dips = dips  # a function deep-copies to itself: on_minimum appends to this list
     return ta, callback
 
 
@@ -157,13 +173,14 @@ class _ImpactRule:
         self.priming = False  # True during _start's restart at t = 0: that event is not an impact
 
     def impact(self, ta):
-        """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi') after it."""
+        """Apply the rule to ta's state (x' < 0 at a downward crossing: psi' <-> xi'); (x', xi', eta) after it.
+        ``ta.state`` is read once: each read makes a numpy view (measured: a second read cost ~0.3 us per impact)."""
         s = ta.state
         u, v = s[1], s[2]
         s[0] = 0.0
         s[1] = -u
         s[2] = u + v
-        return -u, u + v
+        return -u, u + v, s[3]
 
     def record(self, t, u, v, eta):
         self.t.append(t)
@@ -172,22 +189,22 @@ class _ImpactRule:
         self.eta.append(eta)
 
     def __call__(self, ta, d_sgn):
-        u, v = self.impact(ta)
+        u, v, eta = self.impact(ta)
         if self.priming:
             self.priming = False
             return False
-        self.record(ta.time, u, v, ta.state[3])
+        self.record(ta.time, u, v, eta)
         return len(self.t) < self.limit
 
 
 class _Flights(_ImpactRule):
     """The floor event's callback in :func:`run`: the impact rule and its record (:class:`_ImpactRule`), and
     the per-flight checks of the module docstring: it stops the propagation (returns False) at
-    ``limit`` impacts or on a failure, which it notes in ``failure``, ``index``, ``reason``: an upward
-    crossing inside the flight, too many zero-length flights, the CPU budget."""
+    ``limit`` impacts or on a failure, which it notes in ``failure``, ``index``, ``reason``: a minimum of x
+    below the floor inside the flight, too many zero-length flights, the CPU budget."""
 
     def __init__(self):
-        self.upward = []
+        self.dips = []
         self.reset(0)
 
     def reset(self, limit, budget=math.inf, start=0.0):
@@ -197,20 +214,16 @@ class _Flights(_ImpactRule):
         self.n_short = 0
 
     def __call__(self, ta, d_sgn):
-        u, v = self.impact(ta)
+        u, v, eta = self.impact(ta)
         if self.priming:
             self.priming = False
             return False
-        up = self.upward
-        if up:
-            if len(up) == 1 and up[0] == self.t_prev:  # the restart after the last impact (fast path)
-                up.clear()
-            elif self.inside():
-                return False
+        if self.dips and self.inside():
+            return False
         t = ta.time
         tau = t - self.t_prev
         self.t_prev = t
-        self.record(t, u, v, ta.state[3])
+        self.record(t, u, v, eta)
         n = len(self.t)
         self.n_short = self.n_short + 1 if tau < STALL_DT else 0
         if self.n_short > STALL_COUNT:
@@ -227,19 +240,20 @@ class _Flights(_ImpactRule):
         self.failure, self.index, self.reason = failure, index, reason
 
     def inside(self):
-        """missed_impact (b): an upward crossing of x = 0 inside a flight, i.e. at t > 0 and not at the restart
-        of the last impact (noted, the impacts from that flight's end on dropped; the list is cleared).
-        Checked at every impact and at the end, so that a crossing heyoka reports after the terminal event
-        of its step is still seen (then at the next impact, earlier than the last one)."""
-        inside = [t for t in self.upward if t > 0.0 and t != self.t_prev]
-        self.upward.clear()
-        if inside:
-            k = bisect.bisect_left(self.t, inside[0])
-            for column in (self.t, self.u, self.v, self.eta):
-                del column[k:]
-            self.note("missed_impact", k,
-                      f"x rose through the floor at t = {inside[0]!r} inside a flight: a dip below it was skipped")
-        return bool(inside)
+        """missed_impact (b): x had a minimum below the floor inside a flight (noted; the impacts from the end of
+        the flight that holds it on are dropped).  heyoka calls a step's non-terminal callbacks before its
+        terminal one and drops those after the terminal event, so that flight is the one under way: the
+        impact whose callback sees the dip is not recorded.  Checked at every impact and after every propagation."""
+        if not self.dips:
+            return False
+        t_dip = self.dips[0]
+        self.dips.clear()
+        k = bisect.bisect_left(self.t, t_dip)
+        for column in (self.t, self.u, self.v, self.eta):
+            del column[k:]
+        self.note("missed_impact", k,
+                  f"x had a minimum below the floor at t = {t_dip!r} inside a flight: the dip into it was skipped")
+        return True
 
 
 def _started(params, initial, setting, checked):
@@ -258,7 +272,7 @@ def _started(params, initial, setting, checked):
     callback.priming = True
     _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
     callback.priming = False
-    callback.upward.clear()
+    callback.dips.clear()
     return ta, callback, cfg, (rho, pa, pb, xi_eq), dev, eta0
 
 
@@ -267,8 +281,8 @@ def impacts(params, initial, max_events, t_end, setting=None):
 
     One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
     (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
-    adds its failure checks (an upward event on x = 0, the checks of :class:`_Flights`, the flight bound
-    between propagations): ~6 against ~4 us per Hertz impact from impact 1e3 on.  Here nothing is
+    adds its failure checks (a non-terminal event on x' = 0, the checks of :class:`_Flights`, the flight
+    bound between propagations): 1.25x the CPU per Hertz impact (module docstring).  Here nothing is
     checked: a skipped impact shows as fewer than ``max_events`` impacts by
     ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
     which the caller compares.  ``cpu`` is the process time of the propagation alone.  ``t_end`` should
@@ -352,8 +366,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
             if m.any():
                 s = c_out(samples[m])
                 y_out[m] = 1.0 + 2.0 * xi_eq + s[:, 0] + 2.0 * s[:, 3]
-        if outcome != hy.taylor_outcome.time_limit or flights.failure:
-            break
+        if outcome != hy.taylor_outcome.time_limit or flights.failure or flights.inside():
+            break  # (b) before (a): a dip found during the propagation is named as such
         # missed_impact (a): the flight under way has outlived the bound from its start
         k = len(flights.t)
         x, u, v, eta = (dev.x, dev.xdot, dev.xidot, eta0) if k == 0 else (
@@ -364,7 +378,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
                          f"(x = {ta.state[0]!r}): an impact was skipped")
             break
     cpu = time.process_time() - start
-    if outcome is not None and not flights.failure and not (flights.upward and flights.inside()):
+    if outcome is not None and not flights.failure and not flights.inside():
         if int(outcome) != EVENT_STOP and outcome != hy.taylor_outcome.time_limit:
             flights.note("stall", len(flights.t),
                          f"heyoka stopped with {outcome!r} at t = {ta.time!r} (state {list(ta.state)!r})")
