@@ -1,6 +1,6 @@
 """Impacts per second of the power-law solver deep in the asymptotic regime (one core).
 
-    python benchmarks/bench_power_core.py [--impacts N] [--repeats R] [--sticky-only]
+    python benchmarks/bench_power_core.py [--impacts N] [--repeats R] [--sticky-only | --disc]
 
 Runs bounce.power_events.run_power_events from a state near the static equilibrium
 (xdot = 1e-7, at rest in the spring otherwise; gamma = 0.01, mu = 0.1) for Hertz
@@ -13,6 +13,10 @@ Before that (alone with --sticky-only), the cost of one Hertz sticky phase
 rest on the floor: the median CPU time per phase, and the series steps and step-size trials per
 phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
 around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
+
+With --disc instead: the Cauchy disc fraction of bounce.power_series.disc_fraction (min(0.95, 2/a))
+against the fixed 0.95 it replaced, as the median CPU time of 2e4 impacts of two drops (psi = 6 at rest,
+the spring at xi = xi_eq or at its rest length xi = 0) for a = 2.5 .. 24, b = 1/2, gamma = mu = 0.01.
 """
 
 from __future__ import annotations
@@ -22,10 +26,11 @@ import time
 
 import numpy as np
 
-from bounce import power_sticky
+from bounce import Parameters, State, power_sticky
 from bounce.flight import FOUND, NEVER
 from bounce.power_events import run_power_events
-from bounce.power_series import DEGREE_LONG, L_XI_EQ, law_array
+from bounce.power_series import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
+from bounce.springs import SPRING_LAWS
 from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
@@ -73,12 +78,46 @@ def sticky_costs(gamma, mu, xi, v, calls, repeats):
     return float(np.median(times)), counts["taylor_coefficients"], counts["tail_bounds"], status, duration
 
 
+def drop_seconds(law, start, n, repeats):
+    """Median CPU seconds of n events of run_power_events from the deviations ``start`` (after a warm-up)."""
+    out = [np.empty(n) for _ in range(6)]
+    kind = np.empty(n, dtype=np.int8)
+    run_power_events(*start, law, 2, np.inf, 0.0, *out, kind)
+    times = []
+    for _ in range(repeats):
+        t0 = time.process_time()
+        m, _, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
+        times.append(time.process_time() - t0)
+        assert m == n, (m, n)
+    return float(np.median(times))
+
+
+def disc_scan(n, repeats):
+    """The --disc table: CPU ms of n events with the fixed DISC and with disc_fraction, and their ratio."""
+    gamma = mu = 0.01
+    print(f"drops of {n} events, b = 0.5, gamma = mu = {gamma}: CPU ms, median of {repeats}")
+    print("     a  start        d   fixed 0.95   disc_fraction   ratio")
+    for a in (2.5, 3.0, 5.0, 8.0, 12.0, 24.0):
+        params = Parameters(gamma, mu, SPRING_LAWS["power"](rho=1.0, a=a, b=0.5))
+        new = law_array(1.0, a, 0.5, mu, gamma)
+        old = law_array(1.0, a, 0.5, mu, gamma, disc=DISC)
+        for name, xi in (("xi_eq", params.xi_eq), ("xi = 0", 0.0)):
+            dev = State.from_psi_xi(6.0, 0.0, xi, 0.0).deviations(params)
+            start = (dev.x, dev.xdot, dev.xidot, dev.eta)
+            t_old, t_new = (drop_seconds(law, start, n, repeats) for law in (old, new))
+            print(f"{a:6.1f}  {name:7s} {new[L_DISC]:6.3f} {t_old * 1e3:12.1f} {t_new * 1e3:15.1f} {t_old / t_new:7.2f}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--impacts", type=int, default=1_000_000)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--sticky-only", action="store_true", help="only the sticky-phase costs")
+    parser.add_argument("--disc", action="store_true", help="only the Cauchy disc fraction against the fixed 0.95")
     args = parser.parse_args()
+    if args.disc:
+        disc_scan(20_000, args.repeats)
+        return
     for name, start in STICKY_STARTS.items():
         sec, steps, trials, status, duration = sticky_costs(*start, calls=200, repeats=args.repeats)
         print(f"sticky {name:8s} {sec * 1e6:9.1f} us/phase  {steps:4d} series steps  {trials:4d} step-size trials  "

@@ -12,10 +12,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bounce.power_series import (DEGREE_LONG, cauchy_radius, comparison_guess, comparison_step, excursion,
-                                 law_array, powers_at, series_radius, step_radius, taylor_coefficients)
+from bounce.power_series import (DEGREE_LONG, DISC, L_DISC, L_GROW_A, L_GROW_B, cauchy_radius, comparison_guess,
+                                 comparison_step, disc_fraction, excursion, law_array, powers_at, series_radius,
+                                 step_radius, taylor_coefficients)
 
-LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4_b1": (0.5, 0.25, 1.0), "linear": (1.0, 0.0, 0.0)}
+LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4_b1": (0.5, 0.25, 1.0), "linear": (1.0, 0.0, 0.0),
+        "stiff_a8": (1.0, 8.0, 0.5)}  # the disc fraction d = 2/a = 0.25 < DISC (disc_fraction)
 STATES = [(-0.0464, 0.0), (-0.0464, 7e-4), (0.05, -0.01), (-0.1, 0.05), (0.1, 0.0), (-0.3, 0.2), (0.02, 0.1)]
 
 
@@ -43,6 +45,16 @@ def coefficients_obey_the_radius(radius_of, rho, a, b, mu, xi0, v0):
 @pytest.mark.parametrize("xi0, v0", STATES)
 def test_coefficients_obey_the_radius(radius_of, name, xi0, v0):
     coefficients_obey_the_radius(radius_of, *LAWS[name], 0.05, xi0, v0)
+
+
+@pytest.mark.parametrize("a, d", [(0.0, DISC), (0.5, DISC), (2.0, DISC), (2.0 / DISC, DISC), (4.0, 0.5), (50.0, 0.04)])
+def test_disc_fraction(a, d):
+    """d = min(DISC, 2/a): the laws with a <= 2/DISC (Hertz, linear) keep DISC; the law array's majorant
+    factors (1 + d)^(a+1), (1 + d)^b are formed with the same d (for a = 50: 2.7 where 1.95^51 = 6e14)."""
+    assert disc_fraction(a) == d
+    law = law_array(1.0, a, 0.5, 0.1, 0.01)
+    assert law[L_DISC] == d and law[L_GROW_A] == (1.0 + d) ** (a + 1.0) and law[L_GROW_B] == (1.0 + d) ** 0.5
+    assert law_array(1.0, a, 0.5, 0.1, 0.01, disc=DISC)[L_DISC] == DISC
 
 
 @settings(max_examples=300, deadline=None)

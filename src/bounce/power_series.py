@@ -27,11 +27,11 @@ the linear law (a = b = 0) is then analytic through xi = 0 and loses no digit to
 division by |xi0|.
 
 Rigorous tail (Cauchy's majorant argument).  Let D be the closed polydisc
-|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = 0.95 |xi0| (so sigma z keeps a
-positive real part and (S) is holomorphic in D; any Rz for a = b = 0).  On D the
-right side of (S) is bounded by M = M0 + M1 Rp with
+|z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = d |xi0|, 0 < d < 1 (so sigma z keeps a
+positive real part and (S) is holomorphic in D; any Rz for a = b = 0; d = min(0.95, 2/a),
+:func:`disc_fraction`: 0.95 for Hertz).  On D the right side of (S) is bounded by M = M0 + M1 Rp with
 
-    M0 = c0 + r (1.95 |xi0|)^(a+1) + 2 m |v0| (1.95 |xi0|)^b,   M1 = 2 m (1.95 |xi0|)^b
+    M0 = c0 + r ((1+d) |xi0|)^(a+1) + 2 m |v0| ((1+d) |xi0|)^b,   M1 = 2 m ((1+d) |xi0|)^b
 
 (|w^p| = |w|^p on the principal branch).  Along every complex ray t = s e^(i phi)
 the solution cannot leave D before s = r_c = min(Rz / (|v0| + Rp), Rp / M), so it
@@ -45,7 +45,7 @@ are what :mod:`bounce.power_flight` compares with the rounding level of x and x'
 A larger r_c from a linear comparison equation (:func:`comparison_radius`; near a turning point
 of the spring, v0 ~ 0, it is ~2x the r_c above for Hertz: the bound M is the force at the edge of
 D, reached only late).  On the disc |z - xi0| <= Rz the restoring part of (S) is within
-L |z - xi0| of its value at xi0, L = r (a+1) (1.95 |xi0|)^a (mean value theorem on the convex
+L |z - xi0| of its value at xi0, L = r (a+1) ((1+d) |xi0|)^a (mean value theorem on the convex
 disc; L = r for a = 0), and the damping is <= M1 |p| with M1 as above, so along a ray
 t = s e^(i phi), while xi stays in the disc, e(s) >= |xi - xi0| and e'(s) - |v0| >= |xi' - v0|
 for the solution of
@@ -90,8 +90,9 @@ from decimal import Decimal, localcontext
 import numpy as np
 from numba import njit
 
-#: Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|): the
-#: step near xi = 0 is ~ theta DISC |xi0| / |xi'|, the majorant grows only as (1 + DISC)^(a+1).
+#: largest Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|): the
+#: step near xi = 0 is ~ theta d |xi0| / |xi'| and the majorant grows as (1 + d)^(a+1) with the law's
+#: fraction d = min(DISC, 2/a) (:func:`disc_fraction`).
 DISC = 0.95
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
@@ -106,8 +107,8 @@ MARGIN = 1.0 + 1e-12
 
 # layout of the law array (see law_array)
 (L_RHO, L_AP1, L_B, L_MU, L_GAMMA, L_XI_EQ, L_GROW_A, L_GROW_B, L_ANALYTIC_A, L_ANALYTIC_B,
- L_EQ_RESIDUAL, L_ROOT_Q) = range(12)
-LAW_SIZE = 12
+ L_EQ_RESIDUAL, L_ROOT_Q, L_DISC) = range(13)
+LAW_SIZE = 13
 #: degree of the series in the root variable sigma = |xi|^(1/q) across xi = 0 (:func:`root_coefficients`).
 ROOT_DEGREE = 64
 #: the root variable is used for a, b in (1/ROOT_Q_MAX) Z (dyadic, so q a, q b are exact in float64).
@@ -126,24 +127,44 @@ def root_denominator(a: float, b: float) -> int:
     return 0
 
 
-def law_array(rho: float, a: float, b: float, mu: float, gamma: float):
+def disc_fraction(a: float) -> float:
+    """d = min(DISC, 2/a): the Cauchy disc |z - xi0| <= d |xi0| of the module docstring.
+
+    Any 0 < d < 1 keeps the disc off xi = 0.  Where the restoring force limits the radius,
+    r_c^2 ~ d / ((1 + d)^(a+1) |xi0|^a r) is largest at d = 1/a, and the fixed DISC would shrink the steps
+    by ~(1.95 / (1 + 1/a))^((a+1)/2) (a = 24: ~1e3, a = 50: ~1e7: a drop of the a = 50 law did not reach
+    its second impact in 14 min); where the speed limits it, r_c ~ d |xi0| / |xi'| wants d large.  2/a
+    was the fastest of 1/a, 2/a, 4/a and DISC over a = 1.5 .. 24 (2e4 impacts of the drops from
+    xi = xi_eq and xi = 0, b = 0.5, gamma = mu = 0.01: against DISC within 10% for a = 2.5, 3, 1.2x faster
+    at a = 5, 1.6x at a = 8, 3.7x at a = 12, 160-200x at a = 24; ``python benchmarks/bench_power_core.py
+    --disc``).  The damping's factor
+    (1 + d)^b is left to DISC: with b large the damping is weak near equilibrium and a smaller d only
+    shortened the steps (b = 12: 4x slower at d = 2/b).  Laws with a <= 2/DISC (Hertz, the linear law)
+    keep DISC.
+    """
+    return min(DISC, 2.0 / a if a > 0.0 else math.inf)
+
+
+def law_array(rho: float, a: float, b: float, mu: float, gamma: float, disc: float | None = None):
     """The spring law and the flight constants as one float array for the kernels.
 
     Holds rho, a + 1, b, mu, gamma, xi_eq = -(gamma/rho)^(1/(a+1)) (eq.
-    ``nonlin-equilibrium-xi``), the factors (1 + DISC)^(a+1), (1 + DISC)^b of the
-    majorant, whether the restoring (a = 0) and damping (b = 0) terms are analytic, and the
+    ``nonlin-equilibrium-xi``), the factors (1 + d)^(a+1), (1 + d)^b of the
+    majorant with the disc fraction d (:func:`disc_fraction` unless ``disc`` gives one, 0 < d < 1; also
+    held), whether the restoring (a = 0) and damping (b = 0) terms are analytic, and the
     residual gamma - rho |xi_eq|^(a+1) of the rounded xi_eq (~1 ulp of gamma; 0 for the
     linear law), computed at 50 digits so that the force near equilibrium
     (:func:`restoring_excess`) is that of the double xi_eq + eta, not of a rounded origin.
     """
     xi_eq = -((gamma / rho) ** (1.0 / (a + 1.0)))
+    d = disc_fraction(a) if disc is None else disc
     with localcontext() as ctx:
         ctx.prec = 50
         w = Decimal(-xi_eq)
         residual = float(Decimal(gamma) - Decimal(rho) * (Decimal(a + 1.0) * w.ln()).exp())
     return np.array([
-        rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + DISC) ** (a + 1.0), (1.0 + DISC) ** b,
-        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual, float(root_denominator(a, b)),
+        rho, a + 1.0, b, mu, gamma, xi_eq, (1.0 + d) ** (a + 1.0), (1.0 + d) ** b,
+        1.0 if a == 0.0 else 0.0, 1.0 if b == 0.0 else 0.0, residual, float(root_denominator(a, b)), d,
     ])
 
 
@@ -382,7 +403,7 @@ def cauchy_radius(w0, v0, p0, q0, c0, r, m, law):
         M0 = c0 + r * (w0 + Rz) + 2.0 * m * av
         M1 = 2.0 * m
     else:
-        Rz = DISC * w0
+        Rz = law[L_DISC] * w0
         M0 = c0 + r * law[L_GROW_A] * p0 + 2.0 * m * av * law[L_GROW_B] * q0
         M1 = 2.0 * m * law[L_GROW_B] * q0
     M0 *= MARGIN
@@ -425,8 +446,9 @@ def _larger_radius(w0, v0, p0, q0, c0, r, m, law, one_shot):
         return radius, Rz, Rp
     if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
         A0, L, M1 = c0 + r * w0, r, 2.0 * m
-    else:  # L = r (a+1) (1.95 w0)^a, M1 = 2 m (1.95 w0)^b
-        A0, L, M1 = c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + DISC) * w0), 2.0 * m * law[L_GROW_B] * q0
+    else:  # L = r (a+1) ((1 + d) w0)^a, M1 = 2 m ((1 + d) w0)^b
+        A0, L, M1 = (c0 + r * p0, law[L_AP1] * r * law[L_GROW_A] * p0 / ((1.0 + law[L_DISC]) * w0),
+                     2.0 * m * law[L_GROW_B] * q0)
     A0 *= MARGIN
     L *= MARGIN
     M1 *= MARGIN
