@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import pathlib
 import signal
 import stat
 import subprocess
@@ -419,6 +420,43 @@ def test_real_signal_during_write(signum, status, tmp_path):
     assert proc.returncode == status, stderr
     assert stdout == "" and len(stderr.splitlines()) == 1 and stderr.startswith("error: ")
     assert list(tmp_path.iterdir()) == []
+
+
+_SLOW_SIMULATION = """
+import sys, bounce.cli as cli
+simulate = cli.simulate
+def marked(*args, **kwargs):
+    open(sys.argv[-1] + ".computing", "w").close()
+    return simulate(*args, **kwargs)
+cli.simulate = marked
+sys.exit(cli.main(sys.argv[1:-1]))
+"""
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_signal_while_a_kernel_computes_ends_the_process(signum, tmp_path):
+    """SIGINT or SIGTERM while a compiled kernel runs ends the process at once, nothing written: the
+    interpreter's handlers run only when the kernel returns, so a power-law run of ~2 min (b = 12: weak
+    damping near equilibrium, long flights) used to go on to its end."""
+    out = tmp_path / "run.nc"
+    marker = tmp_path / "m"
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--spring", "power", "--rho", "1", "--a", "0.5",
+            "--b", "12", "--psi0", "6", "--psidot0", "0", "--xi0", "-0.05", "--xidot0", "0", "--events", "200000",
+            "--out", str(out), str(marker)]
+    proc = subprocess.Popen([sys.executable, "-c", _SLOW_SIMULATION, *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env={**os.environ, "PYTHONWARNINGS": "ignore"},
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    computing = pathlib.Path(str(marker) + ".computing")
+    deadline = time.monotonic() + 300  # a cold numba cache compiles the power-law kernels first
+    while not computing.exists():
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.05)
+    time.sleep(2.0)  # inside the kernel (or still compiling it): both run without returning to Python
+    proc.send_signal(signum)
+    stdout, stderr = proc.communicate(timeout=30)
+    assert proc.returncode == -signum, (proc.returncode, stderr)
+    assert stdout == "" and not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.computing"]
 
 
 def test_sigkill_leftover_removed_by_next_run(tmp_path, capsys):

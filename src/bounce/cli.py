@@ -30,10 +30,12 @@ consecutive event times may coincide while tau stays exact.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import signal
 import sys
+import threading
 
 import numpy as np
 
@@ -323,20 +325,44 @@ def _simulate_command(args) -> int:
         return _stream_command(args, params, initial, out)
     _keep(args)
     check_memory(args.events)  # refuse up front what would meet the OOM killer
-    if args.dt_sample is not None:
-        # fail before simulating: the sampled span is [0, t_max], or at least [0, first event]
-        first = simulate(params, initial, max_events=1, t_max=args.t_max, energy_stop=args.energy_stop)
-        _n_samples(args.t_max if math.isfinite(args.t_max) else _sample_end(first, args.t_max), args.dt_sample)
-    stop = {"max_events": args.events, "t_max": args.t_max, "energy_stop": args.energy_stop}
-    if progress_enabled(args.progress):  # in chunks, to draw the bar (the same bits as one call)
-        traj = simulate_chunked(params, initial, chunk=args.chunk, progress=True, **stop)
-    else:
-        traj = simulate(params, initial, **stop)
-    times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
-    write_netcdf(to_dataset(traj, times), out, compression=args.compression)
+    with _signals_end_the_process():
+        if args.dt_sample is not None:
+            # fail before simulating: the sampled span is [0, t_max], or at least [0, first event]
+            first = simulate(params, initial, max_events=1, t_max=args.t_max, energy_stop=args.energy_stop)
+            _n_samples(args.t_max if math.isfinite(args.t_max) else _sample_end(first, args.t_max), args.dt_sample)
+        stop = {"max_events": args.events, "t_max": args.t_max, "energy_stop": args.energy_stop}
+        if progress_enabled(args.progress):  # in chunks, to draw the bar (the same bits as one call)
+            traj = simulate_chunked(params, initial, chunk=args.chunk, progress=True, **stop)
+        else:
+            traj = simulate(params, initial, **stop)
+        times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
+        dataset = to_dataset(traj, times)
+    write_netcdf(dataset, out, compression=args.compression)
     counts = np.bincount(traj.kind, minlength=len(KIND_NAMES))
     print(_summary(len(traj), counts, traj.stop_reason, traj.t_end, out, None if times is None else len(times)))
     return EXIT_OK
+
+
+@contextlib.contextmanager
+def _signals_end_the_process():
+    """While the compiled kernels run and nothing is written yet, SIGINT and SIGTERM take their default action:
+    the process ends at once (status 128 + signal in the shell), no file touched.  A kernel returns to the
+    interpreter only when it is done, and :func:`main`'s handlers run only then (a power-law run of minutes
+    ignored both until its end).  A signal the process was started ignoring (SIGINT of a background job)
+    stays ignored; the previous handlers are restored for the write."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {}
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        handler = signal.getsignal(signum)
+        if handler is not signal.SIG_IGN:
+            previous[signum] = signal.signal(signum, signal.SIG_DFL)
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, signal.SIG_DFL if handler is None else handler)  # None: not set from Python
 
 
 def _join_negative_numbers(argv: list[str]) -> list[str]:
@@ -377,7 +403,9 @@ def main(argv=None) -> int:
     """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit status.
 
     SIGTERM is turned into an exception for the duration (temporary files are then
-    removed as on any failure) and the previous handler restored afterwards.
+    removed as on any failure) and the previous handler restored afterwards; while a simulation
+    computes, before anything is written, SIGINT and SIGTERM end the process at once
+    (:func:`_signals_end_the_process`).
     """
     with_handler = True
     try:
