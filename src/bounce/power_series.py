@@ -132,8 +132,8 @@ def disc_fraction(a: float) -> float:
 
     Any 0 < d < 1 keeps the disc off xi = 0.  Where the restoring force limits the radius,
     r_c^2 ~ d / ((1 + d)^(a+1) |xi0|^a r) is largest at d = 1/a, and the fixed DISC would shrink the steps
-    by ~(1.95 / (1 + 1/a))^((a+1)/2) (a = 24: ~1e3, a = 50: ~1e7: a drop of the a = 50 law did not reach
-    its second impact in 14 min); where the speed limits it, r_c ~ d |xi0| / |xi'| wants d large.  2/a
+    by ~(1.95 / (1 + 1/a))^((a+1)/2) / sqrt(0.95 a) (a = 24: ~500, a = 50: ~2e6: a drop of the a = 50 law
+    did not reach its second impact in 14 min); where the speed limits it, r_c ~ d |xi0| / |xi'| wants d large.  2/a
     was the fastest of 1/a, 2/a, 4/a and DISC over a = 1.5 .. 24 (2e4 impacts of the drops from
     xi = xi_eq and xi = 0, b = 0.5, gamma = mu = 0.01: against DISC within 10% for a = 2.5, 3, 1.2x faster
     at a = 5, 1.6x at a = 8, 3.7x at a = 12, 160-200x at a = 24; ``python benchmarks/bench_power_core.py
