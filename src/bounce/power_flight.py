@@ -865,18 +865,15 @@ def _split_flight(u, v, eta, law, X, P, Q, T, t_p, B, radius, Rz, Rp):
         return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     x, w, vj, ej, tj = 0.0, u, v, eta, 0.0
     for j in range(m):
-        if j > 0:
-            xi0 = law[L_XI_EQ] + ej
-            w0 = abs(xi0)
-            if w0 == 0.0:
-                return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-            p0, q0 = powers_at(w0, law)
-            K, radius, Rz, Rp = _hot_degree(h, w0, vj, p0, q0, tol_x, tol_v, law)
-        else:
-            xi0 = law[L_XI_EQ] + eta
-            w0 = abs(xi0)
-            p0, q0 = powers_at(w0, law)
+        xi0 = law[L_XI_EQ] + ej
+        w0 = abs(xi0)
+        if w0 == 0.0:
+            return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        p0, q0 = powers_at(w0, law)
+        if j == 0:  # the one-step's radius
             K = _short_degree(h / radius, Rz, Rp, tol_x, tol_v, DEGREE_SHORT)
+        else:
+            K, radius, Rz, Rp = _hot_degree(h, w0, vj, p0, q0, tol_x, tol_v, law)
         if K == 0:
             return HANDOVER, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         taylor_coefficients(xi0, w0, vj, p0, q0, rho * (p0 if xi0 >= 0.0 else -p0), rho, mu, law, 1.0, K, X, P, Q)
