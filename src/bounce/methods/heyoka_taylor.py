@@ -53,18 +53,17 @@ from: x, xdot, xidot, eta, xi_eq, with xi = xi_eq + eta exactly) and ``reason`` 
 heyoka (~2.4 s to import) loads at its first use (:func:`bounce._registry.lazy_import`), so listing the methods
 does not load it.
 
-Measured (``python benchmarks/bench_power.py``, heyoka 7.13.2, Hertz a = b = 1/2, gamma = mu = 0.01, one
-core of a shared machine, load 1.8-3.2, medians of 5; numbers in results/timing/bench_power.json), heyoka
-in its fastest use (:func:`impacts`: one propagation, the impact rule in the event callback): 2.5e5
-impacts/s in the asymptotic regime (bounce 2.6e6, 10.5x), 3e3-3e5 in the drop's first 1e4 impacts, whose
-long flights cross the rest length xi = 0 (there bounce is 0.9-1.8x heyoka: both take Taylor steps of
-similar cost, bounce about half as many; over the first 2e4 impacts 1.8x), measured before the impact
-rule read heyoka's state once (2026-11: 0.3-0.7 us less per impact since, interleaved medians); through
-:func:`run`, with the failure checks above, 1.25x impacts()' CPU per impact deep and over the drop's
-first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the drop: interleaved medians of 11,
-load 1.9; ``bench_power.py --long 0``: 1.8e5 against 2.2e5 impacts/s deep); with the event on x = 0
-upwards that (b) replaced, a Python callback at every restart, 1.5x deep and 1.4x on the drop, and
-18 us per impact deep when run returned to Python after every flight (until 2026-11);
+Measured (``python benchmarks/bench_power.py --law hertz --long 0``, heyoka 7.13.2, Hertz a = b = 1/2,
+gamma = mu = 0.01, one core of a shared machine, load 1.3-1.6, medians of 5, commit aa060cb; numbers in
+results/timing/bench_power.json), heyoka in its fastest use (:func:`impacts`: one propagation, the impact
+rule in the event callback): 2.1e5 impacts/s in the asymptotic regime (bounce 2.9e6, 13.9x), 3e3-2.6e5 in
+the drop's first 1e4 impacts, whose long flights cross the rest length xi = 0 (there bounce is 1.2-2.6x
+heyoka: both take Taylor steps of similar cost, bounce about half as many; over the first 2e4 impacts
+3.4x); through :func:`run`, with the failure checks above, 1.25x impacts()' CPU per impact deep and over
+the drop's first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the drop: interleaved medians of
+11, load 1.9; the benchmark: 1.7e5 against 2.1e5 impacts/s deep); with the event on x = 0 upwards that (b)
+replaced, a Python callback at every restart, 1.5x, and 18 us per impact deep when run returned to Python
+after every flight;
 one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
