@@ -46,18 +46,25 @@ STICKY_STARTS = {
 STATUS = {FOUND: "detach", NEVER: "proved infinite"}
 
 
-def rate(rho, a, b, gamma, mu, n, repeats):
-    law = law_array(rho, a, b, mu, gamma)
+def timed_events(law, start, n, repeats):
+    """(median CPU seconds, event arrays, kinds) of n events of run_power_events from the deviations
+    ``start`` = (x, x', xi', eta), after a warm-up call (compilation); every run must record n events."""
     out = [np.empty(n) for _ in range(6)]
     kind = np.empty(n, dtype=np.int8)
-    run_power_events(0.0, 1e-7, 0.0, 0.0, law, 10, np.inf, 0.0, *out, kind)  # compile
+    run_power_events(*start, law, 2, np.inf, 0.0, *out, kind)
     times = []
     for _ in range(repeats):
         t0 = time.process_time()
-        m, stop, _ = run_power_events(0.0, 1e-7, 0.0, 0.0, law, n, np.inf, 0.0, *out, kind)
+        m, stop, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
         times.append(time.process_time() - t0)
-        assert m == n and stop == 0 and np.all(kind == 0)
-    return n / float(np.median(times)), out
+        assert m == n and stop == 0, (m, n, stop)  # stopped by the event count
+    return float(np.median(times)), out, kind
+
+
+def rate(rho, a, b, gamma, mu, n, repeats):
+    seconds, out, kind = timed_events(law_array(rho, a, b, mu, gamma), (0.0, 1e-7, 0.0, 0.0), n, repeats)
+    assert np.all(kind == 0)  # impacts only
+    return n / seconds, out
 
 
 def sticky_costs(gamma, mu, xi, v, calls, repeats):
@@ -78,20 +85,6 @@ def sticky_costs(gamma, mu, xi, v, calls, repeats):
     return float(np.median(times)), counts["taylor_coefficients"], counts["tail_bounds"], status, duration
 
 
-def drop_seconds(law, start, n, repeats):
-    """Median CPU seconds of n events of run_power_events from the deviations ``start`` (after a warm-up)."""
-    out = [np.empty(n) for _ in range(6)]
-    kind = np.empty(n, dtype=np.int8)
-    run_power_events(*start, law, 2, np.inf, 0.0, *out, kind)
-    times = []
-    for _ in range(repeats):
-        t0 = time.process_time()
-        m, _, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
-        times.append(time.process_time() - t0)
-        assert m == n, (m, n)
-    return float(np.median(times))
-
-
 def disc_scan(n, repeats):
     """The --disc table: CPU ms of n events with the fixed DISC and with disc_fraction, and their ratio."""
     gamma = mu = 0.01
@@ -104,7 +97,7 @@ def disc_scan(n, repeats):
         for name, xi in (("xi_eq", params.xi_eq), ("xi = 0", 0.0)):
             dev = State.from_psi_xi(6.0, 0.0, xi, 0.0).deviations(params)
             start = (dev.x, dev.xdot, dev.xidot, dev.eta)
-            t_old, t_new = (drop_seconds(law, start, n, repeats) for law in (old, new))
+            t_old, t_new = (timed_events(law, start, n, repeats)[0] for law in (old, new))
             print(f"{a:6.1f}  {name:7s} {new[L_DISC]:6.3f} {t_old * 1e3:12.1f} {t_new * 1e3:15.1f} {t_old / t_new:7.2f}")
 
 
