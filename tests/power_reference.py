@@ -582,6 +582,28 @@ def reference_first_impact(gamma, mu, rho, a, b, x, xdot, xidot, xi, dps=DPS) ->
         )
 
 
+def first_impact_errors(gamma, mu, rho, a, b, start, xi_eq, impact) -> list:
+    """Errors of a solver's first impact against :func:`reference_first_impact`, each relative to its rounding scale.
+
+    ``start`` = (x, x', xi', eta) of the flight with xi = xi_eq + eta exactly (the solver's float64 origin
+    ``xi_eq``), ``impact`` = (tau, x', xi', eta) just after it.  Scales as in test_power_core.flight_errors: tau
+    and x' to themselves; xi' = psi'(tau-) to |x'(0)| + |xi'(0)| + gamma tau (the terms it is summed from);
+    eta to |eta| + |eta - eta0|.  Returns [tau, x', xi', eta] errors as floats.
+    """
+    x, u, v, eta0 = start
+    with mp.workdps(60):
+        xi0 = mpf(xi_eq) + mpf(eta0)
+    ref = reference_first_impact(gamma, mu, rho, a, b, x, u, v, xi0)
+    tau = float(ref["tau"])
+    with mp.workdps(60):
+        eta_ref = float(ref["xi"] - mpf(xi_eq))  # xi(tau) - xi_eq, rounded once
+    tau_s, xdot, xidot, eta = impact
+    return [abs(tau_s - tau) / tau,
+            abs(xdot - float(ref["xdot"])) / abs(float(ref["xdot"])),
+            abs(xidot - float(ref["xidot"])) / (abs(u) + abs(v) + gamma * tau),
+            abs(eta - eta_ref) / (abs(eta_ref) + abs(eta_ref - eta0))]
+
+
 # --------------------------------------------------------------------------------------------
 # the sticky phase (lower mass at rest on the floor)
 # --------------------------------------------------------------------------------------------
