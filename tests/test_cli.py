@@ -396,13 +396,17 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-def _start_slow_write(tmp_path, out):
+def _spawn(code, args):
+    """``python -c code *args`` as a user's terminal would start it."""
     env = {**os.environ, "PYTHONWARNINGS": "ignore"}
     # a user's terminal delivers SIGINT: restore its default in the child even when this test process was
     # started in the background, where the shell leaves SIGINT ignored (and Python then installs no handler)
-    proc = subprocess.Popen([sys.executable, "-c", _SLOW_WRITER, "simulate", *GOOD, "--events", "5", "--out", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    return subprocess.Popen([sys.executable, "-c", code, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, env=env, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+
+def _start_slow_write(tmp_path, out):
+    proc = _spawn(_SLOW_WRITER, ["simulate", *GOOD, "--events", "5", "--out", str(out)])
     deadline = time.monotonic() + 120
     while not [p for p in tmp_path.iterdir() if p.name.endswith(".bounce-tmp")]:
         assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
@@ -443,9 +447,7 @@ def test_signal_while_a_kernel_computes_ends_the_process(signum, tmp_path):
     args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--spring", "power", "--rho", "1", "--a", "0.5",
             "--b", "12", "--psi0", "6", "--psidot0", "0", "--xi0", "-0.05", "--xidot0", "0", "--events", "200000",
             "--out", str(out), str(marker)]
-    proc = subprocess.Popen([sys.executable, "-c", _SLOW_SIMULATION, *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env={**os.environ, "PYTHONWARNINGS": "ignore"},
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    proc = _spawn(_SLOW_SIMULATION, args)
     computing = pathlib.Path(str(marker) + ".computing")
     deadline = time.monotonic() + 300  # a cold numba cache compiles the power-law kernels first
     while not computing.exists():
