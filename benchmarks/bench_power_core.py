@@ -2,19 +2,19 @@
 
     python benchmarks/bench_power_core.py [--impacts N] [--repeats R] [--sticky-only | --disc]
 
-Runs bounce.power_events.run_power_events from a state near the static equilibrium
+Runs bounce.series.events.run_power_events from a state near the static equilibrium
 (xdot = 1e-7, at rest in the spring otherwise; gamma = 0.01, mu = 0.1) for Hertz
 (a = b = 1/2) and the linear law through the same code, after one warm-up call
 (compilation), and prints the median impacts/s over the repeats, timed in process CPU
 time (the machine may be shared; CPU time is what one core delivers).
 
 Before that (alone with --sticky-only), the cost of one Hertz sticky phase
-(bounce.power_sticky.sticky_phase, to its detach or its never-detach proof) for four starts at
+(bounce.series.sticky.sticky_phase, to its detach or its never-detach proof) for four starts at
 rest on the floor: the median CPU time per phase, and the series steps and step-size trials per
 phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
 around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
 
-With --disc instead: the Cauchy disc fraction of bounce.power_series.disc_fraction (min(0.95, 2/a))
+With --disc instead: the Cauchy disc fraction of bounce.series.taylor.disc_fraction (min(0.95, 2/a))
 against the fixed 0.95 it replaced, as the median CPU time of 2e4 impacts of two drops (psi = 6 at rest,
 the spring at xi = xi_eq or at its rest length xi = 0) for a = 2.5 .. 24, b = 1/2, gamma = mu = 0.01.
 """
@@ -27,9 +27,9 @@ import time
 import numpy as np
 
 from bounce import Parameters, State, power_sticky
-from bounce.flight import FOUND, NEVER
-from bounce.power_events import run_power_events
-from bounce.power_series import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
+from bounce.exact.flight import FOUND, NEVER
+from bounce.series.events import run_power_events
+from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
 from call_counts import counting
 

@@ -24,9 +24,9 @@ A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
    measured error budget, never "what passes"); ``not checkable`` says why in ``measured``.
 3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone.
 
-No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.theory`,
-fitting in :mod:`bounce.fitting`, mpmath in :mod:`bounce.reference`, experiments shared by several
-claim groups in :mod:`bounce.anomalies`.
+No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.analysis.theory`,
+fitting in :mod:`bounce.analysis.fitting`, mpmath in :mod:`bounce.analysis.reference`, experiments shared by several
+claim groups in :mod:`bounce.analysis.anomalies`.
 
 Every experiment is in the graph (the probe budget).  A claim group simulates nothing long itself:
 

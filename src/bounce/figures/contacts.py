@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import theory
+from ..analysis import theory
 from .common import WIDTH, plt, save, tex_num
 
 IMPACT = 0
