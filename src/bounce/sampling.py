@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .exact.events import STICKY_START
+from .kinds import STICKY_START
 from .exact.flight import FOUND, flight_spring, gap, oscillator_at
 from .exact.oscillator import fundamental, make_oscillator
 from .series.flight import first_contact

@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .exact.events import KIND_NAMES, STOP_FAILED, STOP_NAMES, run_events
+from .kinds import KIND_NAMES, STOP_FAILED, STOP_NAMES
+from .exact.events import run_events
 from .model import Deviations, InputError, Parameters, State, check_supported
 from .exact.oscillator import make_oscillator
 

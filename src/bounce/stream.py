@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .exact.events import CARRY_SIZE, KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES, run_events
+from .kinds import KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES
+from .exact.events import CARRY_SIZE, run_events
 from .model import InputError, Parameters, check_supported
 from .exact.oscillator import make_oscillator
 from .simulate import MAX_EVENTS, SQRT2, Trajectory, _positive_int

@@ -45,7 +45,8 @@ from bounce.checks.base import (
 from bounce.checks.sticky_lemmas import sticky_run
 from bounce.claims_cli import apply_defaults, group_spec
 from bounce.claims_cli import main as check_main
-from bounce.exact.events import DETACH, GRAZING, IMPACT, STICKY_START, contact_window
+from bounce.kinds import DETACH, GRAZING, IMPACT, STICKY_START
+from bounce.exact.events import contact_window
 from bounce.scenes import scene_dataset
 from bounce.analysis.sticky import sticky_duration
 from bounce.sweeps import registry as sweep_registry

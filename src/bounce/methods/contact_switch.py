@@ -48,7 +48,8 @@ import time
 
 import numpy as np
 
-from ..exact.events import GRAZING, IMPACT, STICKY_START, energy_excess
+from ..kinds import GRAZING, IMPACT, STICKY_START
+from ..exact.events import energy_excess
 from ..model import Deviations, InputError
 from ..sampling import sample_trajectory
 from ..simulate import Trajectory, simulate
