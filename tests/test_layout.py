@@ -130,3 +130,25 @@ def test_the_checker_sees_an_arrow_back_up(tmp_path):
     tree_imports = _imports(fake)
     assert "bounce.trajectory" in tree_imports and "bounce.kinds" in tree_imports
     assert _layer("bounce.pipeline.tasks") > _layer("bounce.exact.events")
+
+
+@pytest.mark.parametrize("folder, single, family", [
+    ("checks", "CHECK", "CHECKS"), ("sweeps", "SWEEP", "SWEEPS"), ("studies", "STUDY", "STUDIES"),
+    ("methods", "METHOD", "METHODS"),
+])
+def test_every_plugin_module_is_registered(folder, single, family):
+    """A plug-in is one file plus its registry line: every module of the folder (but ``base`` and private
+    helpers) defines its entry (``single``, or a tuple ``family``), and the discovered registry holds every
+    such entry (a misspelt registry name dropped four studies once: discovery looked for ``STUDYS``)."""
+    import importlib
+
+    package = importlib.import_module(f"bounce.{folder}")
+    registered = list(package.registry().values())
+    for path in sorted((PACKAGE / folder).glob("*.py")):
+        if path.stem in ("__init__", "base") or path.stem.startswith("_"):
+            continue
+        module = importlib.import_module(f"bounce.{folder}.{path.stem}")
+        entries = [e for e in (getattr(module, single, None), *getattr(module, family, ())) if e is not None]
+        assert entries, f"bounce.{folder}.{path.stem} defines neither {single} nor {family}"
+        missing = [e.name for e in entries if not any(e is r for r in registered)]
+        assert not missing, f"bounce.{folder}.{path.stem}: {missing} not in the discovered registry"

@@ -20,7 +20,7 @@ from .base import Study
 
 def registry() -> dict[str, Study]:
     """name -> Study for every module of this package that defines ``STUDY`` (or ``STUDIES``)."""
-    return discover(__name__, __path__, "STUDY", Study)
+    return discover(__name__, __path__, "STUDY", Study, family="STUDIES")
 
 
 def study_slices(config: dict) -> dict:
