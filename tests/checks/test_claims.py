@@ -16,7 +16,9 @@
 from __future__ import annotations
 
 import ast
+import copy
 import functools
+import json
 import math
 from pathlib import Path
 
@@ -89,8 +91,17 @@ OVERRIDES = {
 }
 
 
+#: group_spec's answers by (group, changes): it reads and validates config.yaml and schema.yaml (~0.2 s a call, and
+#: the tests ask ~300 times for ~20 different slices)
+_SPECS: dict = {}
+
+
 def spec(name: str, **changes) -> dict:
-    return group_spec(name, {**OVERRIDES[name], **changes}, ROOT)
+    """The group's config slice on the small inputs (bounce.claims_cli.group_spec), a fresh copy for every caller."""
+    key = (name, json.dumps(changes, sort_keys=True))
+    if key not in _SPECS:
+        _SPECS[key] = group_spec(name, {**OVERRIDES[name], **changes}, ROOT)
+    return copy.deepcopy(_SPECS[key])
 
 
 @functools.cache
@@ -101,8 +112,10 @@ def scenes() -> dict:
             **{k: scene_dataset(v, k) for k, v in NONLIN.items()}}
 
 
+@functools.cache
 def _synthetic_sticky_inputs(p_rms: float) -> list:
-    """sticky-convergence.nc and sticky-inference.nc with a known RMS law (no per-eps runs)."""
+    """sticky-convergence.nc and sticky-inference.nc with a known RMS law (no per-eps runs); built once (15 t_c
+    root searches), read-only like the cached scenes (tests that doctor an input copy it first)."""
     eps = np.array([1e-5, 1e-4, 1e-3, 1e-2])
     conv = xr.Dataset({"rms": ("eps", 0.3 * eps**p_rms), "n_impacts": ("eps", (5 * eps**-0.8).astype(int))},
                       coords={"eps": eps}, attrs={"t_c": sticky_duration(0.01, 0.01), "gamma": 0.01, "mu": 0.01,
