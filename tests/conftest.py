@@ -7,7 +7,9 @@ test instead of 100); ``.ci/run`` runs it.  ``-m EXPR`` selects by marker as usu
 tests only) and then replaces the default deselection.
 """
 
+import fcntl
 import os
+from pathlib import Path
 
 import pytest
 from hypothesis import settings
@@ -40,3 +42,23 @@ def pytest_collection_modifyitems(config, items):
     if slow:
         config.hook.pytest_deselected(items=slow)
         items[:] = [item for item in items if not item.get_closest_marker("slow")]
+
+
+@pytest.fixture(scope="session")
+def ci_results(tmp_path_factory) -> Path:
+    """``results/`` of the CI-sized pipeline (config/ci.yaml, 2 cores), run once per session for every slow test
+    that reads its outputs; under pytest-xdist once for all the workers (the first one runs it, the others wait
+    on a lock and read the same folder).  Tests must not modify it."""
+    from ci_pipeline import run_ci_pipeline
+
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent  # the session's folder, shared by its workers
+    work, done = base / "ci-pipeline", base / "ci-pipeline.done"
+    with open(base / "ci-pipeline.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            work.mkdir(exist_ok=True)
+            run_ci_pipeline(work)
+            done.touch()
+    return work / "results"

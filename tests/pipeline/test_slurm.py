@@ -53,6 +53,7 @@ def _snakemake(workdir: Path, *args) -> subprocess.CompletedProcess:
     return proc
 
 
+@pytest.mark.slow
 def test_sweeps_on_slurm_equal_the_local_run(tmp_path):
     on_slurm, local = tmp_path / "slurm", tmp_path / "local"
     proc = _snakemake(on_slurm, "--profile", str(ROOT / "workflow" / "profiles" / "slurm"))

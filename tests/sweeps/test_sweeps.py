@@ -162,16 +162,37 @@ def test_alpha_atlas_limits_are_one_in_every_cell():
     assert np.all(np.abs(ds["exponent"].values - 1.0) < 0.3)  # Lemma Giorgio's: corrections ~ ln n/n
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["contact-monte-carlo", "asymptotic-atlas", "our-r-band", "hertz-restitution",
                                   "alpha-atlas"])
-def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
+def test_ci_sized_sweep_through_the_task_entry_points(name, ci_results):
+    """The CI-sized sweep as the pipeline made it (tests/conftest.py: ci_results; workflow/rules/sweeps.smk calls
+    bounce.pipeline.tasks sweep-shard with the rule's 2 workers, sweep-gather, sweep-figure): every shard, the
+    gathered file with its attributes, units and long names, the figure.  (It ran the three entry points itself
+    on the same CI-sized spec; the pipeline's run is the same calls, so CI no longer computes the sweeps twice.)"""
+    spec = _ci_spec(name)
+    for k in range(spec["shards"]):
+        shard = read_dataset(ci_results / "sweeps" / name / f"shard-{k}-of-{spec['shards']}.nc")
+        assert shard.attrs["sweep"] == name and (shard.attrs["shard"], shard.attrs["shards"]) == (k, spec["shards"])
+    ds = read_dataset(ci_results / "sweeps" / f"{name}.nc")
+    assert ds.attrs["sweep"] == name and ds.attrs["git_commit"]
+    for var in ds.data_vars.values():
+        assert var.attrs.get("long_name") and "units" in var.attrs
+    png, pdf = ci_results / "sweeps" / f"fig-{name}.png", ci_results / "sweeps" / f"fig-{name}.pdf"
+    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 5_000
+
+
+def test_task_entry_points_run_a_sweep(tmp_path):
+    """bounce.pipeline.tasks sweep-shard, sweep-gather and sweep-figure on a small sweep in two shards, in this process
+    (no worker processes: they are test_gathered_dataset_does_not_depend_on_shards_or_workers'): exit status 0, the
+    attributes, units and long names, the figure, and the gathered file equal to gather's here."""
     import json
 
-    spec = _ci_spec(name)
+    name, spec = "contact-monte-carlo", dict(MC, shards=2, batch=100)  # one batch a shard: no worker process
     text = json.dumps(spec)
-    shards = [tmp_path / f"shard-{k}.nc" for k in range(spec["shards"])]
+    shards = [tmp_path / f"shard-{k}.nc" for k in range(2)]
     for k, path in enumerate(shards):
-        assert task(["sweep-shard", "--name", name, "--spec", text, "--shard", str(k), "--workers", "2",
+        assert task(["sweep-shard", "--name", name, "--spec", text, "--shard", str(k), "--workers", "1",
                      "--out", str(path)]) == 0
     out = tmp_path / f"{name}.nc"
     assert task(["sweep-gather", "--name", name, "--spec", text, "--inputs", *map(str, shards), "--out", str(out)]) == 0
@@ -182,6 +203,7 @@ def test_ci_sized_sweep_through_the_task_entry_points(name, tmp_path):
     for var in ds.data_vars.values():
         assert var.attrs.get("long_name") and "units" in var.attrs
     assert png.stat().st_size > 10_000 and pdf.stat().st_size > 5_000
+    xr.testing.assert_identical(ds, _gathered(name, spec, shards=2, workers=1))
 
 
 @pytest.mark.parametrize("edit, key", [

@@ -1,0 +1,39 @@
+"""Snakemake as the tests call it, and the CI-sized pipeline run (config/ci.yaml) the slow tests share.
+
+Not a test: ``tests/conftest.py`` runs :func:`run_ci_pipeline` once per session (fixture ``ci_results``) for
+every test that reads its outputs (tests/pipeline/test_pipeline.py, tests/sweeps/test_sweeps.py).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SNAKEMAKE = [sys.executable, "-m", "snakemake", "-s", str(ROOT / "Snakefile")]
+CI_CONFIG = ROOT / "config" / "ci.yaml"
+
+
+def env() -> dict:
+    """This environment with this interpreter's folder first on PATH (the rules call ``python``); the numba
+    cache (BOUNCE_NUMBA_CACHE_DIR) is inherited, so the jobs load the kernels the tests compiled."""
+    out = dict(os.environ)
+    out["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{out.get('PATH', '')}"
+    return out
+
+
+def snakemake(workdir: Path, *args: str, check: bool = True, timeout: float = 900) -> subprocess.CompletedProcess:
+    """``snakemake --directory workdir *args``; on failure (``check``) an AssertionError with the tail of its output."""
+    proc = subprocess.run([*SNAKEMAKE, "--directory", str(workdir), *args], capture_output=True, text=True,
+                          env=env(), timeout=timeout)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
+    return proc
+
+
+def run_ci_pipeline(workdir: Path, *targets: str) -> Path:
+    """The CI-sized pipeline (or its ``targets``) in ``workdir`` on 2 cores; returns ``workdir/results``."""
+    snakemake(workdir, "--configfile", str(CI_CONFIG), "--cores", "2", *targets)
+    return workdir / "results"
