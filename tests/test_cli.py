@@ -234,6 +234,14 @@ def test_dt_sample_at_rest(tmp_path, capsys):
     np.testing.assert_allclose(ds.sampled_y_minus_yeq.values, 0.0, atol=1e-15)  # y0 = 0.98 is rounded
 
 
+@pytest.mark.parametrize("argv, name", [(["--bogus"], "--bogus"), (["a", "b"], "b"), (["--data"], "--data")])
+def test_check_command_bad_arguments_one_line(argv, name, capsys):
+    """Issue 25 item 10: ``bounce check`` with bad arguments printed argparse's 4-line usage."""
+    code, out, err = _run(["check", *argv], capsys)
+    _check_error(code, err, name)
+    assert code == 2 and out == ""
+
+
 def test_help(capsys):
     assert main(["simulate", "--help"]) == 0
     assert "--psi0" in capsys.readouterr().out
@@ -555,6 +563,26 @@ def test_signal_while_a_kernel_computes_ends_the_process(signum, tmp_path):
     assert proc.returncode == -signum, (proc.returncode, stderr)
     assert stdout == "" and not out.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["m.computing"]
+
+
+def test_signal_while_starting_gives_one_line(tmp_path):
+    """Issue 25 item 10: SIGINT while ``python -m bounce`` imports numba, xarray and netCDF4 (the first second)
+    printed a traceback of 20 to 33 lines; now one line, status 130 (or the process ends by SIGINT, which a
+    shell reports as 130 too).  Four runs at once, interrupted 0.1 to 0.7 s after they start (after the
+    interpreter's own first ~30 ms, which no package can reach)."""
+    delays = (0.1, 0.3, 0.5, 0.7)
+    procs = [_spawn("-m", "bounce", "simulate", *GOOD, "--events", "10", "--out", str(tmp_path / f"{k}.nc"))
+             for k in range(len(delays))]
+    start = time.monotonic()
+    for proc, delay in zip(procs, delays):
+        time.sleep(max(0.0, start + delay - time.monotonic()))
+        proc.send_signal(signal.SIGINT)
+    for proc in procs:
+        stdout, stderr = _communicate(proc, timeout=60)
+        assert proc.returncode in (130, -signal.SIGINT) and stdout == "", (proc.returncode, stderr)
+        assert "Traceback" not in stderr and len(stderr.splitlines()) <= 1, stderr
+        assert stderr == "" or stderr.startswith("error: interrupted (SIGINT)"), stderr
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_sigkill_leftover_removed_by_next_run(tmp_path, capsys):

@@ -76,7 +76,7 @@ def _raise_terminated(signum, frame):
     raise Terminated()
 
 
-class _Parser(argparse.ArgumentParser):
+class OneLineParser(argparse.ArgumentParser):
     """An ArgumentParser that raises instead of printing usage and exiting."""
 
     def error(self, message):
@@ -132,7 +132,7 @@ _ANY = _number("(-inf, inf)")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = OneLineParser(
         prog="bounce",
         allow_abbrev=False,
         description="Exact event-driven simulation of the two-mass bouncing ball "
