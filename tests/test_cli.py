@@ -15,7 +15,9 @@ import numpy as np
 import pytest
 
 import bounce.io as bio
+from bounce import Parameters, State, simulate
 from bounce.cli import main
+from bounce.model import flight_bound
 
 GOOD = ["--gamma", "0.01", "--mu", "0.01", "--x0", "6", "--xdot0", "0", "--y0", "7", "--ydot0", "0"]
 PSI = ["--psi0", "6", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"]
@@ -314,6 +316,21 @@ def _spy_on_simulate(monkeypatch):
 
     monkeypatch.setattr(cli, "simulate", spy)
     return returned
+
+
+def test_flight_refusal_is_about_every_flight(tmp_path, capsys):
+    """Issue 25 item 10: the refusal of long flights judges the run by its energy, not by its first flight.
+    This state's first flight lasts 0.02, its second 999 (every other one ~1000), 0.83 of the bound its
+    energy gives (1210): an impact exchanges psi' and xi', and the spring's energy launches the centre of
+    mass.  Scaled to a bound beyond 1e8, the state is refused with that reason."""
+    params, state = Parameters(0.01, 0.0), State.from_psi_xi(0.3, 0.0, 0.2, 5.0)
+    traj = simulate(params, state, max_events=10)
+    bound = flight_bound(params.gamma, state.energy(params) - params.energy_min)
+    assert traj.tau[0] < 0.1 and 0.8 * bound < traj.tau.max() <= bound
+    code, out, err = _run(["simulate", "--gamma", "0.01", "--mu", "0", "--psi0", "0.3", "--psidot0", "0", "--xi0",
+                           "0.2", "--xidot0", "5e5", "--out", str(tmp_path / "run.nc")], capsys)
+    _check_error(code, err, "initial state")
+    assert code == 2 and "range" in err and "exchanges psi' and xi'" in err and list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("dt", ["1e-12", "1e-5"])
