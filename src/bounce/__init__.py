@@ -9,8 +9,9 @@ with _interrupt_ends_the_cli(_starting_the_cli()):  # python -m bounce: SIGINT w
 
     _configure_jit_cache()  # before any kernel is decorated
 
+    from ._version import __version__
     from .model import Deviations, InputError, Parameters, State
-    from .simulate import Trajectory, simulate
+    from .simulate import simulate
+    from .trajectory import Trajectory
 
-__version__ = "0.1.0"
 __all__ = ["Deviations", "InputError", "Parameters", "State", "Trajectory", "simulate", "__version__"]

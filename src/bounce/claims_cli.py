@@ -8,7 +8,7 @@ defaults applied (as the pipeline does), and its input datasets are read from ``
 ``results/data/checks/<group>/``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
 Prints one line per verdict row; exit status 0 if no row is ``not reproduced`` unexpectedly
 (a claim with a ``known_failure`` is expected to be not reproduced), 1 otherwise, 2 on bad input
-(one line, as ``python -m bounce simulate``: bad arguments raise :class:`bounce.cli.UsageError`).
+(one line, as ``python -m bounce simulate``: bad arguments raise :class:`bounce.errors.UsageError`).
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ def load_config(paths: list[str], schema_path: str) -> dict:
 
 def main(argv=None) -> int:
     from .checks import input_files, registry
-    from .cli import OneLineParser
+    from .errors import OneLineParser
     from .io import read_dataset
 
     parser = OneLineParser(prog="python -m bounce check", description=__doc__.splitlines()[0])

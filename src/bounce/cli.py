@@ -45,13 +45,15 @@ import threading
 
 import numpy as np
 
-from . import __version__
-from .exact.events import KIND_NAMES
+from ._version import __version__
+from .errors import OneLineParser, UsageError
+from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (
     FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,
 )
-from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
+from .simulate import simulate
+from .trajectory import BYTES_PER_EVENT, MAX_EVENTS
 from .springs import spring_from_spec
 from .stream import (DEFAULT_CHUNK, check_memory, check_paths, partial_path, progress_enabled, simulate_chunked,
                      stream_to_netcdf)
@@ -64,23 +66,12 @@ XY_FORM = ("x0", "xdot0", "y0", "ydot0")
 PSI_FORM = ("psi0", "psidot0", "xi0", "xidot0")
 
 
-class UsageError(Exception):
-    """Bad command-line input; the message is the one line printed after 'error: '."""
-
-
 class Terminated(Exception):
     """SIGTERM, raised by the handler so that cleanup (temporary files) runs as for KeyboardInterrupt."""
 
 
 def _raise_terminated(signum, frame):
     raise Terminated()
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """An ArgumentParser that raises instead of printing usage and exiting."""
-
-    def error(self, message):
-        raise UsageError(message)
 
 
 # --------------------------------------------------------------------------- argument types
