@@ -19,7 +19,8 @@ from fuzzing import DEFECT, POWER_SUPPORTED, Runner, api_cases, command_lines
 from hypothesis import HealthCheck, given, settings
 
 MAX_EXAMPLES = int(os.environ.get("BOUNCE_FUZZ_EXAMPLES", "300"))
-#: seconds one case may take (the slowest accepted cases take ~1 s on a loaded 2-core machine)
+#: seconds one case may take (a case of these ranges takes ~0.1 s on a loaded 2-core machine; one still running
+#: after TIME_BOUND is a defect)
 TIME_BOUND = 60.0
 #: under pytest a fixed example sequence (tests/conftest.py)
 SETTINGS = settings(deadline=None, max_examples=MAX_EXAMPLES, database=None,
