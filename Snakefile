@@ -16,7 +16,7 @@ from pathlib import Path
 
 from snakemake.utils import min_version
 
-from bounce.config import ConfigError, load_schema, validated
+from bounce.pipeline.config import ConfigError, load_schema, validated
 
 min_version("8.0")
 
@@ -27,7 +27,7 @@ configfile: Path(workflow.basedir) / "config" / "config.yaml"
 report: "workflow/report/workflow.rst"
 
 
-# The config contract (bounce.config): unknown keys, NaN/inf, out-of-range values, unphysical scenes and
+# The config contract (bounce.pipeline.config): unknown keys, NaN/inf, out-of-range values, unphysical scenes and
 # dangling references stop the run here, before any job starts, with one line naming the key.
 try:
     _checked = validated(config, load_schema(Path(workflow.basedir) / "config" / "schema.yaml"))

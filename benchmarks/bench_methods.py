@@ -1,8 +1,8 @@
 """The table behind the work-precision chart: every method and setting against the exact solver.
 
-Runs :func:`bounce.methods.compare.work_precision` with the ``methods`` section of a config
+Runs :func:`bounce.studies.compare.work_precision` with the ``methods`` section of a config
 (``config/config.yaml`` by default, ``--ci`` for the CI-sized sweep; validated and defaulted by
-``bounce.config`` as in the pipeline; ``--law hertz``: the Hertz study, heyoka against bounce's
+``bounce.pipeline.config`` as in the pipeline; ``--law hertz``: the Hertz study, heyoka against bounce's
 power-law solver) and prints, per method and
 setting: CPU time of the transient, the relative error of the impact times within the
 predictability horizon, the RMS error of y(t), CPU time per impact of the long run, the failure
@@ -23,8 +23,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from bounce.config import validated
-from bounce.methods.compare import headline, work_precision
+from bounce.pipeline.config import validated
+from bounce.studies.compare import headline, work_precision
 from bounce.studies import study_slice
 
 ROOT = Path(__file__).resolve().parents[1]

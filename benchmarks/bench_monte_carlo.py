@@ -25,8 +25,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from bounce import oscillator
-from bounce.config import validated
+from bounce.exact import oscillator
+from bounce.pipeline.config import validated
 from bounce.sweeps import registry
 
 CONFIG = Path(__file__).resolve().parents[1] / "config" / "config.yaml"

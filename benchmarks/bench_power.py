@@ -39,7 +39,7 @@ Measured per scene, in this run:
    reach, a depth scan: post-impact states x' = u (u = 1e-6 ... 1e-13) with the deep state's
    ratio xi'/x' and eta = 0, 200 impacts each; the first u where heyoka fails, with its reason,
    and the impact index it corresponds to on the drop, n ~ 1/(alpha u) with alpha of the
-   Discussion's map (:func:`bounce.theory.nonlin_alpha_limit`).  The best setting is the one
+   Discussion's map (:func:`bounce.analysis.theory.nonlin_alpha_limit`).  The best setting is the one
    clean to the smallest u (ties: the faster on the deep scene).
 
 Run (results printed as a table and written as JSON, default ``results/timing/bench_power.json``)::
@@ -70,10 +70,10 @@ sys.path.insert(0, str(ROOT / "tests"))
 import power_reference as PR  # noqa: E402
 
 from bounce import Deviations, Parameters, State, simulate  # noqa: E402
-from bounce.events import IMPACT  # noqa: E402
+from bounce.kinds import IMPACT
 from bounce.methods import heyoka_taylor as HT  # noqa: E402
 from bounce.springs import SPRING_LAWS  # noqa: E402
-from bounce.theory import nonlin_alpha_limit  # noqa: E402
+from bounce.analysis.theory import nonlin_alpha_limit  # noqa: E402
 
 GAMMA = MU = 0.01
 LAWS = {"linear": (1.0, 0.0, 0.0), "hertz": (1.0, 0.5, 0.5)}

@@ -2,19 +2,19 @@
 
     python benchmarks/bench_power_core.py [--impacts N] [--repeats R] [--sticky-only | --disc]
 
-Runs bounce.power_events.run_power_events from a state near the static equilibrium
+Runs bounce.series.events.run_power_events from a state near the static equilibrium
 (xdot = 1e-7, at rest in the spring otherwise; gamma = 0.01, mu = 0.1) for Hertz
 (a = b = 1/2) and the linear law through the same code, after one warm-up call
 (compilation), and prints the median impacts/s over the repeats, timed in process CPU
 time (the machine may be shared; CPU time is what one core delivers).
 
 Before that (alone with --sticky-only), the cost of one Hertz sticky phase
-(bounce.power_sticky.sticky_phase, to its detach or its never-detach proof) for four starts at
+(bounce.series.sticky.sticky_phase, to its detach or its never-detach proof) for four starts at
 rest on the floor: the median CPU time per phase, and the series steps and step-size trials per
 phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
 around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
 
-With --disc instead: the Cauchy disc fraction of bounce.power_series.disc_fraction (min(0.95, 2/a))
+With --disc instead: the Cauchy disc fraction of bounce.series.taylor.disc_fraction (min(0.95, 2/a))
 against the fixed 0.95 it replaced, as the median CPU time of 2e4 impacts of two drops (psi = 6 at rest,
 the spring at xi = xi_eq or at its rest length xi = 0) for a = 2.5 .. 24, b = 1/2, gamma = mu = 0.01.
 """
@@ -26,16 +26,18 @@ import time
 
 import numpy as np
 
-from bounce import Parameters, State, power_sticky
-from bounce.flight import FOUND, NEVER
-from bounce.power_events import run_power_events
-from bounce.power_series import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
+from bounce import Parameters, State
+from bounce.exact.flight import FOUND, NEVER
+from bounce.kinds import IMPACT, STOP_EVENTS
+from bounce.series import sticky as power_sticky
+from bounce.series.events import run_power_events
+from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
 from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
-#: crossing the rest length xi = 0 (both of tests/test_power_sticky.py), the onset g0.1_mu1 of
-#: tests/test_power_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
+#: crossing the rest length xi = 0 (both of tests/series/test_series_sticky.py), the onset g0.1_mu1 of
+#: tests/series/test_series_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
 #: detaches after crossing xi = 0), and a phase proved infinite
 STICKY_STARTS = {
     "detach": (0.01, 0.5, -0.0696, -0.2),
@@ -57,13 +59,13 @@ def timed_events(law, start, n, repeats):
         t0 = time.process_time()
         m, stop, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
         times.append(time.process_time() - t0)
-        assert m == n and stop == 0, (m, n, stop)  # stopped by the event count
+        assert m == n and stop == STOP_EVENTS, (m, n, stop)  # stopped by the event count
     return float(np.median(times)), out, kind
 
 
 def rate(rho, a, b, gamma, mu, n, repeats):
     seconds, out, kind = timed_events(law_array(rho, a, b, mu, gamma), (0.0, 1e-7, 0.0, 0.0), n, repeats)
-    assert np.all(kind == 0)  # impacts only
+    assert np.all(kind == IMPACT)  # impacts only
     return n / seconds, out
 
 

@@ -3,7 +3,7 @@
     python benchmarks/bench_power_long_flight.py [--x0 X0] [--points N] [--dps D]
     python benchmarks/bench_power_long_flight.py --realisations N
 
-``--realisations N``: the flight of tests/test_power_reference.py's long-flight test (x0 = 5, mu = 1e-6,
+``--realisations N``: the flight of tests/series/test_series_reference.py's long-flight test (x0 = 5, mu = 1e-6,
 ~45 crossings) for N values gamma = 1e-5 (1 + 0.0137 k), k < N: independent draws of the rounding
 random walk (the spring's motion does not depend on x0, only on gamma through xi_eq), each impact's
 eta against the reference, relative to W = |xi_eq|; printed with their rms and largest value, against
@@ -13,7 +13,7 @@ the docstring's rms estimate 1.5e-17 n^1.5 (n crossings).  The test checks one d
 The Hertz flight (rho = 1, a = b = 1/2) of test_power_core's long-flight test: gamma = 1e-5,
 mu = 0, dropped from x = X0 (default 2e4: ~6e4 long) at rest with xi = xi_eq, so the spring swings
 through its rest length xi = 0 thousands of times with amplitude W = |xi_eq| and speed V there.
-bounce's state at N checkpoints t (:func:`bounce.power_flight.first_contact` with t_limit = t)
+bounce's state at N checkpoints t (:func:`bounce.series.flight.first_contact` with t_limit = t)
 against the independent reference ``tests/power_reference.py`` (at D digits, default 30) from the
 same start, then the impact.  Printed per checkpoint: the crossings n of xi = 0 so far, the errors
 of x (relative to X0), x' (to gamma t), eta (to W), xi' (to V), the spring energy's error (exact
@@ -38,9 +38,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 import power_reference as PR  # noqa: E402
 
-from bounce.flight import EPS, FOUND, HORIZON  # noqa: E402
-from bounce.power_flight import first_contact  # noqa: E402
-from bounce.power_series import DEGREE_LONG, L_XI_EQ, law_array  # noqa: E402
+from bounce.exact.flight import EPS, FOUND, HORIZON  # noqa: E402
+from bounce.series.flight import first_contact  # noqa: E402
+from bounce.series.taylor import DEGREE_LONG, L_XI_EQ, law_array  # noqa: E402
 
 GAMMA = 1e-5
 

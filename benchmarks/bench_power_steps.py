@@ -6,8 +6,8 @@ The drop of benchmarks/bench_power.py (Hertz, gamma = mu = 0.01, psi(0) = 6, xi(
 trajectory over N impacts (default 2e4), and from up to M post-impact states per window of
 bench_power's WINDOWS (evenly spread), one flight each:
 
-* bounce: whether the hot path (:func:`bounce.power_flight.short_flight`) takes it (``split``: of those,
-  in two or three steps, :func:`bounce.power_flight._split_flight`), else the series
+* bounce: whether the hot path (:func:`bounce.series.flight.short_flight`) takes it (``split``: of those,
+  in two or three steps, :func:`bounce.series.flight._split_flight`), else the series
   steps (calls of taylor_coefficients), root-variable crossing attempts (_root_crossing calls) and
   evaluations of eq. (P) per flight, counted by running first_contact's Python function (``py_func``)
   with counting wrappers; the CPU time per impact of bounce on the window (median of 3 runs);
@@ -29,9 +29,9 @@ import time
 import numpy as np
 
 from bounce import Deviations, Parameters, State, simulate
-from bounce import power_flight as PF
+from bounce.series import flight as PF
 from bounce.methods import heyoka_taylor as HT
-from bounce.power_series import DEGREE_LONG, law_array
+from bounce.series.taylor import DEGREE_LONG, law_array
 from bounce.springs import SPRING_LAWS
 from call_counts import counting
 

@@ -24,7 +24,7 @@ eq. ``dimensionless-eq-motion``; psi' = xi = xi' = 0 at t = 0):
 * error: relative error of the first impact time t1 against the exact
   sqrt(2 psi0 / gamma) (free fall of the centre of mass with the spring at
   rest), and the largest relative error of t1..t10 against an independent
-  mpmath computation (:mod:`bounce.reference`: closed-form flights -- psi'' = -gamma,
+  mpmath computation (:mod:`bounce.analysis.reference`: closed-form flights -- psi'' = -gamma,
   xi'' + 2 mu xi' + xi = 0 -- with the impact rule psi' <-> xi', 50 digits).
 * lost impact (scipy, see :mod:`bounce.methods.scipy_ivp` for the rules): the first failure of the
   long run (missed_impact: a step over a dip of x below the floor; fell_through; stall: zero-length
@@ -80,10 +80,10 @@ DIVERGE_REL = 1e-6
 # --------------------------------------------------------------------------
 
 def reference_impacts(gamma, mu, psi0, n=N_REF):
-    """First ``n`` impact times (mpf) from psi(0) = psi0, xi = psi' = xi' = 0, by :mod:`bounce.reference`
+    """First ``n`` impact times (mpf) from psi(0) = psi0, xi = psi' = xi' = 0, by :mod:`bounce.analysis.reference`
     (50 digits; its root search cannot skip an impact).  In its deviation variables the start is
     x = psi0, xdot = xi' = 0, eta = xi + gamma = gamma."""
-    from bounce import reference
+    from bounce.analysis import reference
 
     times, _, _ = reference.trajectory(gamma, mu, reference.Dev(psi0, 0.0, 0.0, gamma), n)
     return times
@@ -195,7 +195,7 @@ def _first_over(a, b, thr):
 def run_scene(name, cfg, args, notes):
     import mpmath
     from bounce import Parameters, State
-    from bounce.events import IMPACT
+    from bounce.kinds import IMPACT
     from bounce.methods import scipy_ivp
 
     gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]

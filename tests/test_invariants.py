@@ -16,7 +16,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp, mpf
 
-import reference as R
+from bounce.analysis import reference as R
 from bounce import Deviations, Parameters, simulate
 from bounce.sampling import sample_trajectory
 

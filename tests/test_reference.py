@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 from mpmath import mp, mpf
 
-import reference as R
+from bounce.analysis import reference as R
 from bounce import Deviations, Parameters, State, simulate
 
 REL = 1e-14  # task tolerance, see module docstring

@@ -25,7 +25,7 @@ from .checks.base import NOT_REPRODUCED
 def apply_defaults(instance: dict, schema: dict) -> dict:
     """Validate ``instance`` against ``schema`` (JSON Schema 2020-12) filling in the schema's defaults, as
     snakemake's ``validate(config, schema, set_default=True)`` does; returns the filled copy."""
-    from .config import jsonschema
+    from .pipeline.config import jsonschema
 
     Draft202012Validator, validators = jsonschema.Draft202012Validator, jsonschema.validators
 
@@ -92,7 +92,7 @@ def main(argv=None) -> int:
         print(f"error: group {name} has no claim {only!r}; claims: {', '.join(c.id for c in group.claims)}",
               file=sys.stderr)
         return 2
-    from .config import jsonschema
+    from .pipeline.config import jsonschema
 
     try:
         config = load_config(args.config, args.schema)

@@ -40,7 +40,7 @@ import threading
 import numpy as np
 
 from . import __version__
-from .events import KIND_NAMES
+from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (
     FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,

@@ -37,7 +37,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
-from .events import KIND_NAMES
+from .kinds import KIND_NAMES
 from .model import Deviations, Parameters, State
 from .sampling import sample_trajectory
 from .simulate import Trajectory

@@ -4,7 +4,7 @@ Dimensionless units: lengths in L (rest length of the spring), times in
 sqrt(m / 2k).  gamma = g m / (2 L k) and mu = nu / sqrt(2 k m) (eq.
 ``dimensionless-eq-motion``).  A state is (x, xdot, y, ydot): heights and
 velocities of the lower and upper mass.  The numerical core works in the
-deviation variables of :mod:`bounce.flight`:
+deviation variables of :mod:`bounce.exact.flight`:
 
     u = xdot,  a = xi' = (ydot - xdot)/2,  eta = xi - xi_eq = (y - y_eq - x)/2,
 

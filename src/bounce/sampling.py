@@ -2,10 +2,10 @@
 
 Figures never need stored dense trajectories: the per-event records (time,
 kind and the state just after each event) determine the motion in between,
-a flight by eq. (F) of :mod:`bounce.flight` and a sticky phase by the sticky
-oscillator of :mod:`bounce.events` (closed forms, linear spring), or for the
+a flight by eq. (F) of :mod:`bounce.exact.flight` and a sticky phase by the sticky
+oscillator of :mod:`bounce.exact.events` (closed forms, linear spring), or for the
 power-law spring by the Taylor-series steps of the solver itself
-(:func:`bounce.power_flight.first_contact` and :func:`bounce.power_sticky.sticky_phase`
+(:func:`bounce.series.flight.first_contact` and :func:`bounce.series.sticky.sticky_phase`
 up to the sample time, which return the state there).  Samples after ``t_valid``
 (the last time the simulation vouches for) are NaN.
 
@@ -21,12 +21,12 @@ import math
 import numpy as np
 from numba import njit
 
-from .events import STICKY_START
-from .flight import FOUND, flight_spring, gap, oscillator_at
-from .oscillator import fundamental, make_oscillator
-from .power_flight import first_contact
-from .power_series import DEGREE_LONG, law_array
-from .power_sticky import sticky_phase
+from .kinds import STICKY_START
+from .exact.flight import FOUND, flight_spring, gap, oscillator_at
+from .exact.oscillator import fundamental, make_oscillator
+from .series.flight import first_contact
+from .series.taylor import DEGREE_LONG, law_array
+from .series.sticky import sticky_phase
 
 SQRT2 = math.sqrt(2.0)
 

@@ -14,9 +14,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .events import KIND_NAMES, STOP_FAILED, STOP_NAMES, run_events
+from .kinds import KIND_NAMES, STOP_FAILED, STOP_NAMES
+from .exact.events import run_events
 from .model import Deviations, InputError, Parameters, State, check_supported
-from .oscillator import make_oscillator
+from .exact.oscillator import make_oscillator
 
 SQRT2 = math.sqrt(2.0)
 #: memory of one event record (six float64 arrays and the int8 kind)
@@ -24,9 +25,9 @@ BYTES_PER_EVENT = 6 * 8 + 1
 #: most events one call records (the buffers are allocated up front)
 MAX_EVENTS = 10**10
 
-#: spring laws (bounce.springs) the closed-form flights of bounce.flight solve
+#: spring laws (bounce.springs) the closed-form flights of bounce.exact.flight solve
 EXACT_LAWS = ("linear",)
-#: spring laws solved by the Taylor-series flights of bounce.power_flight (exact to rounding too)
+#: spring laws solved by the Taylor-series flights of bounce.series.flight (exact to rounding too)
 SERIES_LAWS = ("power",)
 
 
@@ -141,14 +142,14 @@ def simulate(
 ) -> Trajectory:
     """Simulate from ``initial`` (a State, or Deviations for states near equilibrium) until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
 
-    Exact to rounding: closed-form flights (:mod:`bounce.flight`), a root finder
-    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.events`); for the
+    Exact to rounding: closed-form flights (:mod:`bounce.exact.flight`), a root finder
+    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.exact.events`); for the
     power-law spring (``params.spring``), Taylor-series flights and sticky phases with rigorous
-    tails (:mod:`bounce.power_events`, :mod:`bounce.power_sticky`; one more stop reason,
+    tails (:mod:`bounce.series.events`, :mod:`bounce.series.sticky`; one more stop reason,
     ``slow_crossing``).
     """
-    if params.spring.name in SERIES_LAWS:  # no closed form: Taylor-series flights (bounce.power_events)
-        from .power_events import simulate_power
+    if params.spring.name in SERIES_LAWS:  # no closed form: Taylor-series flights (bounce.series.events)
+        from .series.events import simulate_power
 
         return simulate_power(params, params.spring, initial, max_events, t_max, energy_stop)
     if params.spring.name not in EXACT_LAWS:

@@ -1,6 +1,6 @@
 """Runs longer than memory: the event loop in chunks, records streamed to netCDF, resumable.
 
-:func:`chunks` drives :func:`bounce.events.run_events` ``chunk`` events at a time, carrying
+:func:`chunks` drives :func:`bounce.exact.events.run_events` ``chunk`` events at a time, carrying
 the loop's whole state between calls (``carry``), so the records are the bits of one call
 (tests/test_stream.py).  On top of it:
 
@@ -29,9 +29,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .events import CARRY_SIZE, KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES, run_events
+from .kinds import KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES
+from .exact.events import CARRY_SIZE, run_events
 from .model import InputError, Parameters, check_supported
-from .oscillator import make_oscillator
+from .exact.oscillator import make_oscillator
 from .simulate import MAX_EVENTS, SQRT2, Trajectory, _positive_int
 
 #: one-shot path: 6 float64 records + int8 kind (simulate), 4 derived float64 arrays (netCDF write)

@@ -26,7 +26,7 @@ rule check_experiment:
         name="|".join(re.escape(n) for n in CHECKS),
         experiment="[a-z0-9][a-z0-9-]*",
     shell:
-        "python -m bounce.tasks check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
+        "python -m bounce.pipeline.tasks check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
         "--spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
@@ -51,7 +51,7 @@ rule check:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in CHECKS),
     shell:
-        "python -m bounce.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -m bounce.pipeline.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
 
 
@@ -77,5 +77,5 @@ rule report:
     benchmark:
         "results/timing/report.tsv"
     shell:
-        "python -m bounce.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.html} "
+        "python -m bounce.pipeline.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.html} "
         "> {log} 2>&1"

@@ -17,4 +17,4 @@ rule simulate:
     wildcard_constraints:
         scene="|".join(re.escape(s) for s in SCENES),
     shell:
-        "python -m bounce.tasks scene --name {wildcards.scene} --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -m bounce.pipeline.tasks scene --name {wildcards.scene} --spec {params.spec:q} --out {output} > {log} 2>&1"

@@ -16,7 +16,7 @@ rule sticky_run:
     benchmark:
         "results/timing/sticky/eps{eps}.tsv"
     shell:
-        "python -m bounce.tasks scene --name sticky-eps{wildcards.eps} --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -m bounce.pipeline.tasks scene --name sticky-eps{wildcards.eps} --spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
 rule sticky_convergence:
@@ -35,7 +35,7 @@ rule sticky_convergence:
     benchmark:
         "results/timing/sticky/convergence.tsv"
     shell:
-        "python -m bounce.tasks sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
+        "python -m bounce.pipeline.tasks sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
 
 
 rule sticky_inference:
@@ -52,4 +52,4 @@ rule sticky_inference:
     benchmark:
         "results/timing/sticky/inference.tsv"
     shell:
-        "python -m bounce.tasks sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -m bounce.pipeline.tasks sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"

@@ -36,7 +36,7 @@ rule sweep_shard:
         shards=r"\d+",
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "  # parallel over items, not in BLAS
-        "python -m bounce.tasks sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
+        "python -m bounce.pipeline.tasks sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
         "--workers {threads} --out {output} > {log} 2>&1"
 
 
@@ -58,7 +58,7 @@ rule sweep_gather:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
-        "python -m bounce.tasks sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -m bounce.pipeline.tasks sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output} > {log} 2>&1"
 
 
@@ -81,7 +81,7 @@ rule sweep_figure:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
-        "python -m bounce.tasks sweep-figure --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -m bounce.pipeline.tasks sweep-figure --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.png} {output.pdf} > {log} 2>&1"
 
 

@@ -24,9 +24,9 @@ A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
    measured error budget, never "what passes"); ``not checkable`` says why in ``measured``.
 3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone.
 
-No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.theory`,
-fitting in :mod:`bounce.fitting`, mpmath in :mod:`bounce.reference`, experiments shared by several
-claim groups in :mod:`bounce.anomalies`.
+No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.analysis.theory`,
+fitting in :mod:`bounce.analysis.fitting`, mpmath in :mod:`bounce.analysis.reference`, experiments shared by several
+claim groups in :mod:`bounce.analysis.anomalies`.
 
 Every experiment is in the graph (the probe budget).  A claim group simulates nothing long itself:
 
@@ -38,7 +38,7 @@ Every experiment is in the graph (the probe budget).  A claim group simulates no
   declares (so a config edit reruns exactly it), and read by ``measure`` like any other input;
 * inside a claim only *probes* remain: constructed states followed for at most :data:`PROBE_EVENTS`
   events per :func:`bounce.simulate.simulate` call (a classifier probe, one sticky phase, the restart of
-  a thinned record).  tests/test_claims.py::test_probe_budget counts the events of every call of every
+  a thinned record).  tests/checks/test_claims.py::test_probe_budget counts the events of every call of every
   group on small inputs and fails above the budget.
 
 ``measure`` tells its inputs apart with :func:`split_inputs`: scenes in declared order, the others by the

@@ -4,7 +4,7 @@ Each row states one printed formula or claim.  ``not reproduced`` means the stat
 disagrees with the numerics (or with algebra evaluated numerically); ``measured`` then says what the
 numbers give instead.  No symbolic algebra: the independent side is the simulator (records and
 closed-form dense output), one-sided finite differences of that dense output, the free flight in
-mpmath (:func:`bounce.reference.free_flight`) and plain numerical evaluation.
+mpmath (:func:`bounce.analysis.reference.free_flight`) and plain numerical evaluation.
 
 Finite differences.  A one-sided derivative at an impact t_n is the least-squares polynomial
 (degree ``deg``) through K samples of xdot (or ydot) at t_n +- k h, k = 1..K, differentiated at
@@ -27,14 +27,14 @@ from mpmath import mp, mpf
 from scipy.integrate import simpson
 from scipy.optimize import brentq, minimize
 
-from .. import reference
-from ..events import IMPACT
-from ..fitting import richardson_derivative
+from ..analysis import reference
+from ..kinds import IMPACT
+from ..analysis.fitting import richardson_derivative
 from ..model import Deviations, Parameters, State
-from ..oscillator import fundamental, make_oscillator
+from ..exact.oscillator import fundamental, make_oscillator
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from ..theory import contact_derivatives, T_xi, rest_coefficient_function_of_mu, sticky_energy, u_c
+from ..analysis.theory import contact_derivatives, T_xi, rest_coefficient_function_of_mu, sticky_energy, u_c
 from . import base
 from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Experiment, Verdict, claim, judge, variable
 

@@ -7,7 +7,7 @@ xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b, psi'' = -gamma (Hertz: a = b = 1/2).  C
 2. ``energy-non-increasing``: E of eq. nonlin-energy never rises from record to record (rounding budget stated),
    and the core's excess equals the direct formula minus E_m.
 3. ``dissipation-rate`` (beyond) / ``printed-dissipation-rate`` (erratum): dE/dt = -2 mu xi'^2 |xi|^b
-   (derivation in :func:`bounce.theory.nonlin_energy_rate`); the paper prints -mu xi'^2 |xi|^b.  Checked on
+   (derivation in :func:`bounce.analysis.theory.nonlin_energy_rate`); the paper prints -mu xi'^2 |xi|^b.  Checked on
    consecutive records: E is continuous at an impact (the swap of eq. collision-rule keeps it), so
    E_(n+1) - E_n = -c mu int xi'^2 |xi|^b dt over the flight, with c = 2 derived and c = 1 printed.
    Over a short flight xi' is linear in time to O(omega tau) (xi'' ~ gamma), from v0 = xi'(t_n+) to
@@ -25,9 +25,9 @@ xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b, psi'' = -gamma (Hertz: a = b = 1/2).  C
 
 7. ``correction-decay`` (beyond): n Xdot_n alpha - 1 decays like n^-1 (c ln n + d) (Lemma Giorgio's).
 
-Limits (claims 5 and 6) are Richardson extrapolations (:func:`bounce.fitting.richardson_ln`, the ln n/n and 1/n
+Limits (claims 5 and 6) are Richardson extrapolations (:func:`bounce.analysis.fitting.richardson_ln`, the ln n/n and 1/n
 terms of Lemma Giorgio's expansion cancelled) on the records with n >= fit_n_min, checked against the
-least-squares tail fit :func:`bounce.fitting.tail_limit`; the error is the larger of the extrapolation's change,
+least-squares tail fit :func:`bounce.analysis.fitting.tail_limit`; the error is the larger of the extrapolation's change,
 and its distance to the tail fit (:func:`_limit`), and the tolerance is
 limit_sigmas times that error (the fits' own uncertainty, nothing else).
 """
@@ -40,10 +40,10 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..events import IMPACT
-from ..fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
-from ..flight import EPS
-from ..theory import nonlin_alpha_limit, nonlin_energy, nonlin_equilibrium_xi, nonlin_sticky_scaling
+from ..kinds import IMPACT
+from ..analysis.fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
+from ..exact.flight import EPS
+from ..analysis.theory import nonlin_alpha_limit, nonlin_energy, nonlin_equilibrium_xi, nonlin_sticky_scaling
 from .base import (
     BEYOND,
     ERRATUM,
@@ -129,10 +129,10 @@ def _spring_columns(sc, t) -> np.ndarray:
 
 
 def _limit(n, q, spring, points: int) -> tuple[float, float, float, float]:
-    """(L, err, p, p_err): L by Richardson extrapolation (:func:`bounce.fitting.richardson_ln`, ln n/n and 1/n
+    """(L, err, p, p_err): L by Richardson extrapolation (:func:`bounce.analysis.fitting.richardson_ln`, ln n/n and 1/n
     cancelled), err the larger of its change when its points move by a factor 2 and its distance to the independent
-    least-squares tail fit (:func:`bounce.fitting.tail_limit` from n[0] on); p, p_err: the correction's decay exponent
-    (:func:`bounce.fitting.correction_decay` on ``points`` log-spaced impacts, the spring's relaxation fitted along)."""
+    least-squares tail fit (:func:`bounce.analysis.fitting.tail_limit` from n[0] on); p, p_err: the correction's decay exponent
+    (:func:`bounce.analysis.fitting.correction_decay` on ``points`` log-spaced impacts, the spring's relaxation fitted along)."""
     L_tail = tail_limit(n, q)[0]
     L, err = richardson_ln(n, q)
     err = max(err, abs(L - L_tail))
@@ -282,8 +282,8 @@ def _limit_verdict(sc, spec, L, err, p, p_err, claim_text, ref, computed, expect
     ok = math.isfinite(L) and math.isfinite(err)
     return Verdict(
         f"{claim_text} [{sc.name}]", ref,
-        f"{sc.ctx}: {computed}; limit by Richardson extrapolation (ln n/n and 1/n cancelled, bounce.fitting.richardson_ln) "
-        f"checked against the least-squares tail fit (bounce.fitting.tail_limit) on impacts n >= {spec['fit_n_min']}",
+        f"{sc.ctx}: {computed}; limit by Richardson extrapolation (ln n/n and 1/n cancelled, bounce.analysis.fitting.richardson_ln) "
+        f"checked against the least-squares tail fit (bounce.analysis.fitting.tail_limit) on impacts n >= {spec['fit_n_min']}",
         expected_text, (f"L = {L:.10g} +- {err:.2g}; correction ~ n^-p (c ln n + d), p = {p:.3f} +- {p_err:.2g}"
                         if ok else "no fit window (too few impacts)"),
         f"|L - 1| <= {k:g} x error (the larger of the extrapolation's change when its points move x2 and its distance "

@@ -18,7 +18,7 @@ import xarray as xr
 
 from ..figures.common import WIDTH, plt, save
 from ..io import sample_dataset
-from ..theory import T_xi
+from ..analysis.theory import T_xi
 from .base import PAPER, Check, Verdict, claim, judge
 
 

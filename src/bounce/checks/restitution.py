@@ -41,8 +41,8 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..fitting import fit_limit
-from ..theory import T_xi, our_r, rest_coefficient_function_of_mu, u_c
+from ..analysis.fitting import fit_limit
+from ..analysis.theory import T_xi, our_r, rest_coefficient_function_of_mu, u_c
 from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
 
 NAME = "restitution"

@@ -8,7 +8,7 @@ L2-norm is re-integrated on finer grids.
 
 Own closed form for t_c (independent of the simulator): on the sticky phase F(t) = 2 gamma (C(t) - 1)
 - (alpha/2) S(t), alpha = 4 gamma mu - Ydot0, with C, S the fundamental solutions of w'' + mu w' +
-w/2 = 0 (:func:`bounce.theory.t_c`); t_c is its first zero after 0.
+w/2 = 0 (:func:`bounce.analysis.theory.t_c`); t_c is its first zero after 0.
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ import numpy as np
 import xarray as xr
 
 from ..io import sample_dataset
-from ..fitting import fit_loglog
-from .. import theory
+from ..analysis.fitting import fit_loglog
+from ..analysis import theory
 from .base import NOT_CHECKABLE, PAPER, SELF_TEST, Check, Verdict, claim, judge, variable
 
 NAME = "sticky-convergence"

@@ -9,7 +9,7 @@ Min-sticky-energy), so a run whose first sticky onset has energy E(s_1) has at m
 D the least energy (mu/2) int_{t_s}^{t_d} ydot^2 (eq. energy-dissipation with xi' = ydot/2 in contact)
 that a finite sticky phase with onset energy in [E_min, E(s_1)] dissipates.  D is computed from the
 sticky phase's closed form over a grid of onsets alpha_s in (eps*, alpha_max]
-(:func:`bounce.theory.least_sticky_dissipation`, the bound :func:`bounce.theory.sticky_count_bound`): a grid
+(:func:`bounce.analysis.theory.least_sticky_dissipation`, the bound :func:`bounce.analysis.theory.sticky_count_bound`): a grid
 minimum is at least the infimum, so the bound computed is never looser than the proof's.  This group holds the
 theorem's bound; claim group sticky-lemmas counts sticky events in the Monte Carlo and eq. sticky-ic's family.
 
@@ -38,8 +38,10 @@ import numpy as np
 import xarray as xr
 from mpmath import findroot, mp, mpf, tan
 
-from .. import reference, theory
-from ..events import DETACH, STICKY_ONSET, STICKY_START, contact_window
+from ..analysis import reference
+from ..analysis import theory
+from ..kinds import DETACH, IMPACT, STICKY_START
+from ..exact.events import STICKY_ONSET, contact_window
 from ..model import Parameters, State
 from ..simulate import simulate
 from .base import BEYOND, PAPER, Check, Verdict, judge, recorded, variable
@@ -77,7 +79,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
     returns = np.diff(tr0.t[starts0]) - period  # empty with fewer than two sticky events
     off_period = f"{np.max(np.abs(returns)):.2g}" if returns.size else "- (no return)"
     e_drift = float(np.max(np.abs(tr0.energy_excess - tr0.energy_excess[0])) / tr0.energy_excess[0])
-    # the classifier's windows at the landing (bounce.events): its time is hidden within delta3, and the onset is
+    # the classifier's windows at the landing (bounce.exact.events): its time is hidden within delta3, and the onset is
     # put on the sticky line, moving x'' by up to (STICKY_ONSET x'''^2 xn)^(1/3), i.e. z by twice that and E by z/4 times it
     jerk = float(u) * gamma  # |x'''| = |Ydot_s - 4 gamma mu|/2 at the onset
     xn, _, _, delta3 = contact_window(max(2 * a * float(u), 2 * gamma * float(u) ** 2), 0.0, jerk)
@@ -99,7 +101,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
                  f"{off_period}, energy drift {e_drift:.2g} (relative); the orbit is unstable, "
                  "so rounding ends the cycle after the events shown",
         tolerance=f"1e-30 gamma (mpmath at 40 digits); returns within 2 delta3 = {2 * delta3:.2g} and energy within "
-                  f"{e_window:.2g} relative: the classifier's time and x'' windows at a sticky landing (bounce.events)",
+                  f"{e_window:.2g} relative: the classifier's time and x'' windows at a sticky landing (bounce.exact.events)",
         verdict=judge(ok0))
 
     # ---------------------------------------------------------------- mu > 0: the count against its bound
@@ -163,7 +165,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig, axs = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
     ax = axs[0]
     t, kind = ds["conservative_times"].values, ds["conservative_kind"].values
-    for k, (lab, c, mk) in {0: ("impact", "C0", "."), 2: ("sticky start", "C3", "v"), 3: ("detach", "C2", "^")}.items():
+    for k, (lab, c, mk) in {IMPACT: ("impact", "C0", "."), STICKY_START: ("sticky start", "C3", "v"), DETACH: ("detach", "C2", "^")}.items():
         sel = kind == k
         ax.plot(t[sel], np.arange(t.size)[sel] + 1, mk, color=c, ms=5, label=lab)
     P = ds.attrs["period"]

@@ -7,7 +7,7 @@ to produce the "measured" numbers):
 * **Sticky line.**  A state with x = xdot = 0 has E - E_m = Ydot^2/4 + z^2/8 (z = Y + 2 gamma - 1
   = 2 eta) and x'' = z/2 - 2 gamma + mu Ydot, so the anomalous states (x'' >= 0) are
   z >= 4 gamma - 2 mu Ydot; the minimum of E over them is found numerically (grid, then SLSQP)
-  with the simulator's energy function :func:`bounce.events.energy_excess`.
+  with the simulator's energy function :func:`bounce.exact.events.energy_excess`.
 * **Sticky phase.**  During contact w = y - y_eq obeys w'' + mu w' + w/2 = 0 (eq. y-eq-sticky)
   and so does G = eta + 2 mu eta' (eq. force-on-the-floor: F = G - 2 gamma).  At an onset with
   alpha = 4 gamma mu - Ydot_s: G(0) = 2 gamma, G'(0) = -alpha/2, hence with C, S the
@@ -37,13 +37,14 @@ import numpy as np
 import xarray as xr
 from mpmath import mp
 
-from ..anomalies import construct_contact, minimum_sticky_energy
-from ..events import DETACH, GRAZING, KIND_NAMES, STICKY_START, XN_ULPS, contact_window
-from ..flight import EPS
+from ..analysis.anomalies import construct_contact, minimum_sticky_energy
+from ..kinds import DETACH, GRAZING, KIND_NAMES, STICKY_START
+from ..exact.events import XN_ULPS, contact_window
+from ..exact.flight import EPS
 from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from ..theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
+from ..analysis.theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
                       sticky_onset, ydot_min_Esticky)
 from . import base
 from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, variable
@@ -324,7 +325,7 @@ def duration_bounded_below(m, spec) -> Verdict:
                  "approached as alpha_s -> inf; infinite for alpha_s < eps*",
         measured="smallest durations " + ", ".join(f"{v:.6g}" for v in min_dur) + " vs pi/omega_s "
                  + ", ".join(f"{v:.6g}" for v in d.inf_bound) + f"; decreasing in alpha_s: {monotone}",
-        tolerance="1e-12 relative (detach times are exact to rounding, tests/test_sticky.py)",
+        tolerance="1e-12 relative (detach times are exact to rounding, tests/exact/test_sticky.py)",
         verdict=judge(ok and bool(np.all(min_dur > 0))))
 
 

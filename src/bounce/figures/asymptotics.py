@@ -20,7 +20,7 @@ def energy_decay(datasets, spec, outputs) -> None:
     with t_n ~ (3/mu) ln n (Theorem main_thm) this is E - E_m ~ n^{-3 kappa/mu}, the slope
     expected in the last panel, which prints the slope fitted on the last two decades of n.
     """
-    from ..theory import equilibrium_rates
+    from ..analysis.theory import equilibrium_rates
 
     fig, axes = plt.subplots(1, len(datasets) + 1, figsize=(WIDTH, 2.9))
     a_n = axes[-1]

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import theory
+from ..analysis import theory
+from ..kinds import IMPACT
 from .common import WIDTH, plt, save, tex_num
 
-IMPACT = 0
 
 
 def _impact_only(ds):

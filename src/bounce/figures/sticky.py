@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sticky_study import fit_loglog
+from ..analysis.sticky import fit_loglog
 from .common import WIDTH, plt, save, tex_num
 
 

@@ -8,7 +8,7 @@ This removes exactly Xdot_n^2/4 of E - E_m (eq. ``tot-mech-energy``: (xi'^2 + ps
 drops from (a^2 + (u + a)^2)/2 to (a + u/2)^2 with u = Xdot_n, a = xi'_n), reported
 per switch in ``extra["energy_removed"]``.  The solver is restarted from that
 state (:class:`bounce.model.Deviations` with x = xdot = 0), and *its own*
-classification decides what follows (:func:`bounce.events.run_events`):
+classification decides what follows (:func:`bounce.exact.events.run_events`):
 
 * floor force F = y/2 + mu y' - gamma - 1/2 < 0 (eq. ``force-on-the-floor``; or F = 0
   with F' <= 0): a sticky phase, y'' + mu y' + y/2 = 1/2 - gamma (eq.
@@ -48,7 +48,8 @@ import time
 
 import numpy as np
 
-from ..events import GRAZING, IMPACT, STICKY_START, energy_excess
+from ..kinds import GRAZING, IMPACT, STICKY_START
+from ..exact.events import energy_excess
 from ..model import Deviations, InputError
 from ..sampling import sample_trajectory
 from ..simulate import Trajectory, simulate

@@ -69,7 +69,7 @@ one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
 without a skip and first skips an impact at x' = 3e-9 after an impact: its cooldown, measured 10 eps/x' =
 2.2e-15/x', outlasts the flight, ~x'/gamma, once x' < sqrt(10 eps gamma) = 4.7e-9, i.e. from impact
-n ~ 1/(alpha x') ~ 3-5e9 of the drop on (alpha: bounce.theory.nonlin_alpha_limit); a fixed cooldown of
+n ~ 1/(alpha x') ~ 3-5e9 of the drop on (alpha: bounce.analysis.theory.nonlin_alpha_limit); a fixed cooldown of
 1e-15 or 1e-12 stays clean to x' = 1e-13 (the best setting), 1e-9 fails at x' = 1e-11, and 0 skips the
 first impact after the restart at every depth tried (measured: without a cooldown heyoka's event
 detection does not restart cleanly on the event surface x = 0, see :func:`_start`).
@@ -85,7 +85,7 @@ import time
 import numpy as np
 
 from .._registry import lazy_import
-from ..theory import nonlin_equilibrium_xi
+from ..analysis.theory import nonlin_equilibrium_xi
 from .base import MethodResult, MethodSpec
 
 hy = lazy_import("heyoka")

@@ -88,12 +88,13 @@ import time
 import numpy as np
 from numba import njit
 
-from ..events import IMPACT, compensated_add
-from ..flight import EPS
+from ..kinds import IMPACT
+from ..exact.events import compensated_add
+from ..exact.flight import EPS
 from ..model import InputError
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from ..theory import T_xi, rest_coefficient_function_of_mu, u_c
+from ..analysis.theory import T_xi, rest_coefficient_function_of_mu, u_c
 from .base import MethodResult, MethodSpec
 
 

@@ -1,6 +1,6 @@
 """The paper's linear damped spring (eq. ``dimensionless-eq-motion``): xi'' = -xi - 2 mu xi'.
 
-The closed-form exact solver (:mod:`bounce.flight`, :mod:`bounce.events`) supports this law
+The closed-form exact solver (:mod:`bounce.exact.flight`, :mod:`bounce.exact.events`) supports this law
 only.  Static equilibrium xi_eq = -gamma (eq. ``equilibrium``), E_m = -gamma^2/2 (eq. ``Emin``).
 """
 

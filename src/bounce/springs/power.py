@@ -9,7 +9,7 @@ static equilibrium f(xi_eq) = -gamma is xi_eq = -(gamma/rho)^(1/(a+1)) (eq.
 Along a flight the spring energy xi'^2/2 + V(xi) decreases at the rate
 -2 mu xi'^2 |xi|^b (the paper prints -mu xi'^2 |xi|^b; the factor 2 follows from
 multiplying the equation by xi').  The flights are computed by
-:mod:`bounce.power_flight`.
+:mod:`bounce.series.flight`.
 """
 
 from __future__ import annotations

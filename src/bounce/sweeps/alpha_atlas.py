@@ -4,18 +4,18 @@ For every cell (a, b, constants) -- a and b from their lists, the constants (rho
 list -- the power-law dimer (eq. ``eq-motion-nonlin-psi-xi``) starts with its spring at the static
 equilibrium xi_eq = -(gamma/rho)^(1/(a+1)) (eq. ``nonlin-equilibrium-xi``), at rest, the lower mass
 ``drop`` x |xi_eq| above the floor, and is simulated for ``events`` events (exact to rounding,
-:mod:`bounce.power_events`; a run that stops early, e.g. at a sticky onset, leaves its cell not determined).
+:mod:`bounce.series.events`; a run that stops early, e.g. at a sticky onset, leaves its cell not determined).
 On the impacts n >= ``fit_n_min`` two sequences are fitted:
 
 * q_n = n Xdot_n alpha, alpha = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) (the Discussion: alpha_n -> alpha in
   the map eq. ``mappa``, so Lemma Giorgio's gives n Xdot_n alpha -> 1);
 * q_n = Xdot_n/(gamma tau_n) (Xdot_n/tau_n -> gamma; derivation in :mod:`bounce.checks.nonlinear`).
 
-Their limit L by Richardson extrapolation (:func:`bounce.fitting.richardson_ln`: the ln n/n and 1/n terms
+Their limit L by Richardson extrapolation (:func:`bounce.analysis.fitting.richardson_ln`: the ln n/n and 1/n terms
 cancelled) with its error, on every impact; on ``points`` log-spaced impacts the least-squares tail fit
-(:func:`bounce.fitting.tail_limit`) as an independent second estimate, and the decay exponent p of
-q_n - L ~ n^-p (c ln n + d) (:func:`bounce.fitting.correction_decay`, with the spring's relaxation near
-equilibrium as further columns: eq. y-eq-sticky rescaled by :func:`bounce.theory.nonlin_sticky_scaling`, a
+(:func:`bounce.analysis.fitting.tail_limit`) as an independent second estimate, and the decay exponent p of
+q_n - L ~ n^-p (c ln n + d) (:func:`bounce.analysis.fitting.correction_decay`, with the spring's relaxation near
+equilibrium as further columns: eq. y-eq-sticky rescaled by :func:`bounce.analysis.theory.nonlin_sticky_scaling`, a
 correction n^(-3/2) when oscillatory; Lemma Giorgio's: p = 1).  The theory predicts L = 1 in every cell;
 cells with b > a converge slowest (measured: a = 0, b = 1.5 is still in its transient at 1e6 events).
 """
@@ -27,12 +27,12 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..events import IMPACT
-from ..fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
+from ..kinds import IMPACT
+from ..analysis.fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..springs.power import PowerSpring
-from ..theory import nonlin_alpha_limit, nonlin_equilibrium_xi, nonlin_sticky_scaling
+from ..analysis.theory import nonlin_alpha_limit, nonlin_equilibrium_xi, nonlin_sticky_scaling
 from .base import ITEM, Sweep
 
 NAME = "alpha-atlas"

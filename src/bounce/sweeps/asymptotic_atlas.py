@@ -3,10 +3,10 @@
 For every cell (mu, gamma) of a log-spaced grid, the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and, for each q_n of the check ``main-theorem``
 (n tau_n mu/3 of Theorem main_thm, n Xdot_n mu/(3 gamma) via Lemma Giorgio's, and the other
-limits of its proof), the limit L of q_n is fitted with its error and decay exponent (:func:`bounce.checks.asymptotics.fit_limit`: corrections
+limits of its proof), the limit L of q_n is fitted with its error and decay exponent (:func:`bounce.checks.main_theorem.fit_limit`: corrections
 of the map eq. restituzione plus the sticky spring's relaxation; the fit's error is the
 largest change of L under window and model variants).  The transient is the first n after
-which |q_n - 1| < ``transient`` for good (:func:`bounce.checks.asymptotics.transient_length`).
+which |q_n - 1| < ``transient`` for good (:func:`bounce.checks.main_theorem.transient_length`).
 The theorem predicts L = 1 in every cell; a NaN limit means no fit window of a decade
 after the transient within ``events`` (slow over-damped relaxation, n^{-3 lam/mu}).
 
@@ -21,8 +21,8 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..checks.asymptotics import QUANTITIES, QUANTITY_CLAIMS, series_quantities, trajectory_series
-from ..fitting import fit_limit, transient_length
+from ..checks.main_theorem import QUANTITIES, QUANTITY_CLAIMS, series_quantities, trajectory_series
+from ..analysis.fitting import fit_limit, transient_length
 from ..model import Parameters, State
 from ..simulate import simulate
 from .base import ITEM, Sweep

@@ -3,11 +3,11 @@
 The Monte Carlo of the check ``contact-non-generic`` at scale: ``n_samples`` random initial
 states (gamma log-uniform, mu cycling through the under-, critically and over-damped regimes,
 E - E_m = gamma^2 10^U, a random direction in the state space;
-:func:`bounce.checks.nongeneric.sample_initial`, drawn once for the whole sweep from ``seed``),
+:func:`bounce.checks.contact_non_generic.sample_initial`, drawn once for the whole sweep from ``seed``),
 each run for ``events`` events.  For every impact the arrival speed |Xdot_n| is compared
 with the launch speed of its flight, ratio = |Xdot_n| / max(|Xdot_{n-1}|, |Xdot_n|), and with
 the classifier's rounding window, margin = |Xdot_n| / v_tol
-(:func:`bounce.checks.nongeneric._contact_scales`, the events.py classifier).  The
+(:func:`bounce.checks.contact_non_generic._contact_scales`, the events.py classifier).  The
 histograms of both are pooled per regime: the fraction of contacts with ratio < r, as r -> 0,
 is the measure of near-zero-speed contacts; the theorem says zero-speed contacts (sticky
 onsets, grazings) are non-generic, i.e. their count in a random sample is 0.
@@ -20,10 +20,10 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..anomalies import _contact_scales, sample_initial
-from ..events import KIND_NAMES
+from ..analysis.anomalies import _contact_scales, sample_initial
+from ..kinds import KIND_NAMES
 from ..model import Deviations, Parameters
-from ..oscillator import make_oscillator
+from ..exact.oscillator import make_oscillator
 from ..simulate import simulate
 from .base import ITEM, Sweep
 

@@ -9,12 +9,12 @@ fall does not load the spring) and the centre of mass falling at u: the lower ma
 arrival speed is recorded: the first record's x').  The first impact swaps psi' and xi' (eq.
 ``collision-rule``), the spring compresses and re-expands, and the second impact (x = 0 again) swaps
 back: r = psi' after the second impact / u, eq. ``proper-rest-coeff``'s double impact.  Two events are
-simulated per cell (exact to rounding, :mod:`bounce.power_events`).
+simulated per cell (exact to rounding, :mod:`bounce.series.events`).
 
 Without gravity the spring is back at its rest length at the second impact and leaves at rest; with
 gravity the centre of mass has fallen during the contact time T_c and the spring still moves:
 xi'/u = -gamma T_c/u after the second impact (recorded as ``residual``), which is where gravity breaks
-the single-cycle law (checked in ``bounce.checks.onefifth``; the fit of U and the exponent is there).
+the single-cycle law (checked in ``bounce.checks.onefifth_rest_coeff``; the fit of U and the exponent is there).
 Gravity must stay >= ~1e-12 for u up to 1: below, the second impact falls within rounding of the spring's
 return to rest length (xi = 0, the law's non-analytic point), and the solver stops with ``slow_crossing``
 (recorded as ``complete = 0``, never a guessed r).
@@ -25,11 +25,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..events import IMPACT
+from ..kinds import IMPACT
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..springs.power import PowerSpring
-from ..theory import nonlin_cycle_loss
+from ..analysis.theory import nonlin_cycle_loss
 from .asymptotic_atlas import axis
 from .base import ITEM, Sweep
 

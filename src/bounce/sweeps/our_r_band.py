@@ -1,8 +1,8 @@
 """Sweep ``our-r-band``: the band of impact speeds where eq. ``our-r`` fails, over the damping mu.
 
-Eq. ``our-r`` (:func:`bounce.theory.our_r`) stitches r = e^{-mu T_xi} (large impact speeds u, the
+Eq. ``our-r`` (:func:`bounce.analysis.theory.our_r`) stitches r = e^{-mu T_xi} (large impact speeds u, the
 macroscopic bounce of sec. 8) to r = 1 - mu u/(3 gamma) (small u, eq. ``restituzione``) at
-u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.theory.u_c`).  The check ``restitution`` (claim
+u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The check ``restitution`` (claim
 ``our-r-band``) finds, on one drop (gamma = 1e-5, mu = 0.01), that the law is right on both sides
 and wrong in a band [u1, u2] around u_c.  This sweep maps that band over a log grid of mu
 (under-damped, mu < 1; one item per mu): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
@@ -31,7 +31,7 @@ from ..checks.restitution import double_impact, our_r_test
 from ..io import to_dataset
 from ..model import Parameters, State
 from ..simulate import simulate
-from ..theory import u_c
+from ..analysis.theory import u_c
 from .asymptotic_atlas import _log_edges, axis
 from .base import ITEM, Sweep
 

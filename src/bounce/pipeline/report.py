@@ -1,0 +1,243 @@
+"""The validation report: every claim group's verdict rows -> results/report/validation.{md,html}.
+
+ReScience-style: counts per kind of claim (paper statement, erratum, beyond the paper,
+self-test), a one-line verdict per declared subject (theorem, lemma, figure, equation: config
+``report.subjects``; not reproduced if any claim behind it is, see :func:`overall`), a table of
+every claim (id, kind, claim, paper reference, what was computed, expected, measured, tolerance,
+verdict, figure), a section per claim group with its figure and numbers, the errata, and a link to
+every other figure the pipeline makes with the paper's figure (and caption) it reproduces, or
+"beyond the paper" (the captions are data of the figure registry, :mod:`bounce.figures`).
+
+Subjects are listed in the order the config declares them (``subject_order``: the rule's JSON
+slice sorts keys, so the order travels as a list).
+
+Grouping and kinds are data stamped on each row by its claim (:class:`bounce.checks.base.Claim`),
+never read from the rows' prose.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import xarray as xr
+
+from ..checks.base import ERRATUM, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
+
+ORDER = {NOT_REPRODUCED: 0, NOT_CHECKABLE: 1, REPRODUCED: 2}
+BADGE = {REPRODUCED: "reproduced", NOT_REPRODUCED: "**not reproduced**", NOT_CHECKABLE: "*not checkable*"}
+KIND_TITLES = {"paper": "statements of the paper", "erratum": "errata (the text as printed)",
+               "beyond": "beyond the paper", "self-test": "self-tests of the solver"}
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    name: str
+    title: str
+    figure: str  # path of the check's PNG, relative to the report
+    verdicts: list[Verdict]
+    numbers: dict
+
+
+def _numbers(ds: xr.Dataset) -> dict:
+    """Scalar results of a check (0-d variables) with their long names, for its section."""
+    out = {}
+    for name, var in ds.data_vars.items():
+        if var.ndim == 0 and not name.startswith("verdict_"):
+            out[var.attrs.get("long_name", name)] = float(var.values)
+    return out
+
+
+def load(check_files, figure_files, report_dir) -> list[CheckReport]:
+    reports = []
+    for nc, png in zip(check_files, figure_files, strict=True):
+        with xr.open_dataset(nc) as ds:
+            ds.load()
+        reports.append(CheckReport(
+            name=Path(nc).stem, title=ds.attrs.get("title", Path(nc).stem),
+            figure=os.path.relpath(png, report_dir), verdicts=read_verdicts(ds), numbers=_numbers(ds),
+        ))
+    return reports
+
+
+def overall(verdicts) -> str:
+    """not reproduced if any claim is; else reproduced if any is (saying how many parts are not
+    checkable); else not checkable."""
+    kinds = [v.verdict for v in verdicts]
+    if NOT_REPRODUCED in kinds:
+        return NOT_REPRODUCED
+    if REPRODUCED in kinds:
+        n = kinds.count(NOT_CHECKABLE)
+        return REPRODUCED + (f" ({n} part{'s' * (n > 1)} not checkable)" if n else "")
+    return NOT_CHECKABLE
+
+
+def _badge(verdict: str) -> str:
+    head = verdict.split(" (")[0]
+    return BADGE[head] + verdict[len(head):]
+
+
+class ReportError(ValueError):
+    """A row names a subject the config does not declare."""
+
+
+def rows(reports) -> list[Verdict]:
+    return [v for r in reports for v in r.verdicts]
+
+
+def check_subjects(reports, subjects: dict) -> None:
+    """Every row's subject must be declared in config ``report.subjects`` (one message naming the claim)."""
+    for v in rows(reports):
+        if v.subject not in subjects:
+            raise ReportError(f"claim {v.claim_id or v.claim!r} has subject {v.subject!r}, which config "
+                              f"report.subjects does not declare (declared: {', '.join(subjects)})")
+
+
+def kind_counts(reports) -> list[tuple[str, int, int, int]]:
+    """(kind, reproduced, not reproduced, not checkable) for each kind of claim."""
+    all_rows = rows(reports)
+    return [(k, *(sum(v.kind == k and v.verdict == w for v in all_rows) for w in (REPRODUCED, NOT_REPRODUCED,
+                                                                                 NOT_CHECKABLE))) for k in KINDS]
+
+
+def summaries(reports, subjects: dict) -> list[tuple[str, str, int]]:
+    """(subject title, overall verdict, rows) for each declared subject, from the rows that declare it.
+
+    Errata are left out: a typo in a proof says nothing about whether the statement holds; they are
+    listed in their own section.
+    """
+    backing = [v for v in rows(reports) if v.kind != ERRATUM]
+    out = []
+    for sid, title in subjects.items():
+        mine = [v for v in backing if v.subject == sid]
+        out.append((title, overall(mine), len(mine)))
+    return out
+
+
+def ordered_subjects(spec: dict) -> dict:
+    """config ``report.subjects`` in the config's declared order (``spec["subject_order"]``, the keys as a list;
+    absent: as given).  The order must name every subject once."""
+    subjects = spec["subjects"]
+    order = spec.get("subject_order") or list(subjects)
+    if sorted(order) != sorted(subjects):
+        raise ReportError(f"report subject_order {order} does not list the subjects {sorted(subjects)} once each")
+    return {sid: subjects[sid] for sid in order}
+
+
+def figure_entries(figures, report_dir) -> list[dict]:
+    """The pipeline's figures (``bounce.figures.pipeline_figures``) with their paths relative to the report."""
+    return [dict(f, link=os.path.relpath(f["path"], report_dir)) for f in figures]
+
+
+def _reproduces(f: dict) -> str:
+    return f"fig. {f['paper'].removeprefix('fig:')} of the paper" if f["paper"] else "beyond the paper"
+
+
+def _md_cell(text: str) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def markdown(reports, subjects, meta: dict, figures=()) -> str:
+    lines = [f"# Validation report: {meta.get('title', '')}", ""]
+    lines += [f"Generated by the pipeline (`snakemake --cores 2`) from {len(reports)} claim groups; "
+              f"bounce {meta.get('version', '?')}, git commit `{meta.get('commit', '?')}`.", ""]
+    all_rows = [v for r in reports for v in r.verdicts]
+    counts = {k: sum(v.verdict == k for v in all_rows) for k in ORDER}
+    lines += [f"**{counts[REPRODUCED]} reproduced, {counts[NOT_REPRODUCED]} not reproduced, "
+              f"{counts[NOT_CHECKABLE]} not checkable** (of {len(all_rows)} claims).", ""]
+    lines += ["| kind of claim | reproduced | not reproduced | not checkable |", "|---|---|---|---|"]
+    lines += [f"| {KIND_TITLES[k]} | {a} | {b} | {c} |" for k, a, b, c in kind_counts(reports)]
+    lines += ["", "## Overall verdict per figure and per theorem", "",
+              "Errata are left out (listed below); every other claim backs the subject it declares.", "",
+              "| subject | verdict | claims |", "|---|---|---|"]
+    lines += [f"| {s} | {_badge(v)} | {n} |" for s, v, n in summaries(reports, subjects)]
+    lines += ["", "## All claims", "",
+              "| id | kind | claim | paper | computed | expected | measured | tolerance | verdict | figure |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in reports:
+        for v in r.verdicts:
+            lines.append("| " + " | ".join(_md_cell(c) for c in (
+                f"`{v.claim_id}`", v.kind, v.claim, v.paper_ref, v.computed, v.expected, v.measured, v.tolerance)) +
+                f" | {BADGE[v.verdict]} | [{r.name}]({r.figure}) |")
+    for r in reports:
+        lines += ["", f"## {r.title} (`{r.name}`)", "", f"![{r.name}]({r.figure})", ""]
+        for v in r.verdicts:
+            lines.append(f"* {BADGE[v.verdict]}: {v.claim} ({v.paper_ref}) - measured {v.measured}; "
+                         f"expected {v.expected}; tolerance {v.tolerance}.")
+        if r.numbers:
+            lines += ["", "| quantity | value |", "|---|---|"]
+            lines += [f"| {_md_cell(k)} | {val:.6g} |" for k, val in r.numbers.items()]
+    errata = [v for v in rows(reports) if v.kind == ERRATUM]
+    lines += ["", "## Errata", "", "Statements of the paper, as printed, checked against the numerics or the algebra "
+              "(not reproduced: the printed form is contradicted; the row gives the corrected form):", ""]
+    if errata:
+        lines += [f"* {_badge(v.verdict)} **{v.paper_ref}**: {v.claim}. Evidence: {v.measured} "
+                  f"(expected as printed: {v.expected})." for v in errata]
+    else:
+        lines.append("(no erratum claims in this run)")
+    lines += ["", "## Figures", "", "Every figure of the pipeline besides the claim groups' own (above), with the "
+              "figure of the paper it reproduces and that figure's caption as printed, or what it shows when it is "
+              "beyond the paper.", "", "| figure | reproduces | caption |", "|---|---|---|"]
+    lines += [f"| [{_md_cell(f['name'])}]({f['link']}) | {_reproduces(f)} | {_md_cell(f['caption'])} |"
+              for f in figures]
+    return "\n".join(lines) + "\n"
+
+
+def to_html(reports, subjects, meta: dict, figures=()) -> str:
+    e = html.escape
+    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
+             f"<title>Validation report: {e(meta.get('title', ''))}</title>",
+             "<style>body{font-family:sans-serif;max-width:75em;margin:auto}table{border-collapse:collapse;"
+             "font-size:85%}td,th{border:1px solid #ccc;padding:3px 6px;vertical-align:top}"
+             ".reproduced{background:#e6f5e6}.not-reproduced{background:#fbe3e3}.not-checkable{background:#f3f3f3}"
+             "img{max-width:100%}</style></head><body>",
+             f"<h1>Validation report: {e(meta.get('title', ''))}</h1>",
+             f"<p>bounce {e(meta.get('version', '?'))}, git commit <code>{e(meta.get('commit', '?'))}</code></p>",
+             "<h2>Claims per kind</h2><table><tr><th>kind of claim</th><th>reproduced</th><th>not reproduced</th>"
+             "<th>not checkable</th></tr>"]
+    parts += [f"<tr><td>{e(KIND_TITLES[k])}</td><td>{a}</td><td>{b}</td><td>{c}</td></tr>"
+              for k, a, b, c in kind_counts(reports)]
+    parts.append("</table><h2>Overall verdict per figure and per theorem</h2><table><tr><th>subject</th>"
+                 "<th>verdict</th><th>claims</th></tr>")
+    for s, v, n in summaries(reports, subjects):
+        parts.append(f"<tr class='{v.split(' (')[0].replace(' ', '-')}'><td>{e(s)}</td><td>{e(v)}</td><td>{n}</td></tr>")
+    parts.append("</table><h2>All claims</h2><table><tr>" + "".join(
+        f"<th>{h}</th>" for h in ("id", "kind", "claim", "paper", "computed", "expected", "measured", "tolerance",
+                                  "verdict", "figure")) + "</tr>")
+    for r in reports:
+        for v in r.verdicts:
+            cells = (v.claim_id, v.kind, v.claim, v.paper_ref, v.computed, v.expected, v.measured, v.tolerance,
+                     v.verdict)
+            parts.append(f"<tr class='{v.verdict.replace(' ', '-')}'>" + "".join(f"<td>{e(c)}</td>" for c in cells)
+                         + f"<td><a href='#{e(r.name)}'>{e(r.name)}</a></td></tr>")
+    parts.append("</table>")
+    for r in reports:
+        parts.append(f"<h2 id='{e(r.name)}'>{e(r.title)}</h2><img src='{e(r.figure)}' alt='{e(r.name)}'><ul>")
+        parts += [f"<li><b>{e(v.verdict)}</b>: {e(v.claim)} ({e(v.paper_ref)}): measured {e(v.measured)}; "
+                  f"expected {e(v.expected)}; tolerance {e(v.tolerance)}</li>" for v in r.verdicts]
+        parts.append("</ul>")
+    parts.append("<h2 id='figures'>Figures</h2><p>Every figure of the pipeline besides the claim groups' own, with the "
+                 "figure of the paper it reproduces and its caption as printed, or what it shows.</p><table><tr>"
+                 "<th>figure</th><th>reproduces</th><th>caption</th></tr>")
+    parts += [f"<tr><td><a href='{e(f['link'])}'>{e(f['name'])}</a></td><td>{e(_reproduces(f))}</td>"
+              f"<td>{e(f['caption'])}</td></tr>" for f in figures]
+    parts.append("</table></body></html>")
+    return "\n".join(parts)
+
+
+def write(check_files, figure_files, out_md, out_html, subjects: dict, meta: dict, figures=()) -> None:
+    """Write the markdown and HTML reports (each atomically); ``subjects``: config ``report.subjects`` (in the order
+    to list them, :func:`ordered_subjects`); ``figures``: :func:`bounce.figures.pipeline_figures`."""
+    report_dir = Path(out_md).parent
+    reports = load(check_files, figure_files, report_dir)
+    check_subjects(reports, subjects)
+    figs = figure_entries(figures, report_dir)
+    for path, text in ((out_md, markdown(reports, subjects, meta, figs)),
+                       (out_html, to_html(reports, subjects, meta, figs))):
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{path.name}.tmp")
+        tmp.write_text(text)
+        os.replace(tmp, path)

@@ -1,0 +1,172 @@
+"""Entry points of the Snakemake rules: ``python -m bounce.pipeline.tasks <task> --spec JSON ...``.
+
+Each task takes the config slice it uses as JSON (so a config edit reruns only
+what depends on it), reads/writes files, and delegates to the package.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ..io import read_dataset, write_netcdf
+
+
+def _scene(args) -> None:
+    from ..scenes import scene_dataset
+
+    write_netcdf(scene_dataset(args.spec, name=args.name), args.out[0])
+
+
+def _sticky_inference(args) -> None:
+    from ..analysis.sticky import t_c_map
+
+    write_netcdf(t_c_map(args.spec), args.out[0])
+
+
+def _sticky_convergence(args) -> None:
+    from ..analysis.sticky import convergence
+
+    reference, *runs = (read_dataset(p) for p in args.inputs)
+    write_netcdf(convergence(reference, runs, args.spec["samples"]), args.out[0])
+
+
+def _figure(args) -> None:
+    from ..figures import FIGURES
+
+    FIGURES[args.name].draw([read_dataset(p) for p in args.inputs], args.spec, args.out)
+
+
+def _check(args) -> None:
+    """Run one validation check: its dataset (numbers + verdicts) and its figure."""
+    from ..checks import registry
+
+    check = registry()[args.name]
+    ds = check.run(args.spec, [read_dataset(p) for p in args.inputs])
+    ds.attrs.setdefault("check", args.name)
+    write_netcdf(ds, args.out[0])
+    check.plot(ds, args.spec, args.out[1:])
+
+
+def _check_experiment(args) -> None:
+    """One long simulation of a claim group (``--experiment NAME``), from the config keys it declares."""
+    from .. import __version__
+    from ..checks import registry
+    from ..io import git_info
+
+    ds = registry()[args.name].experiment(args.experiment).dataset(args.spec)
+    commit, dirty = git_info()
+    ds.attrs.update({"Conventions": "CF-1.10", "source": f"bounce {__version__}", "git_commit": commit,
+                     "git_dirty": dirty, "check": args.name, "config": json.dumps(args.spec, sort_keys=True)})
+    write_netcdf(ds, args.out[0])
+
+
+def _report(args) -> None:
+    """Gather every check into results/report/validation.{md,html}."""
+    from .. import __version__
+    from ..io import git_info
+    from .report import ordered_subjects, write
+
+    figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
+    meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
+    write(args.inputs, figures, args.out[0], args.out[1], ordered_subjects(args.spec), meta,
+          figures=args.spec.get("figures", []))
+
+
+def _study(args) -> None:
+    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset, its timings, its figure.
+
+    ``--out NC TIMING_NC PNG PDF``: the CPU times go to TIMING_NC so that NC is byte-reproducible.
+    """
+    from ..io import split_timings
+    from ..studies import STUDIES
+
+    build, plot = STUDIES[args.name].functions()
+    ds = build(args.spec)
+    result, timings = split_timings(ds)
+    write_netcdf(result, args.out[0])
+    write_netcdf(timings, args.out[1])
+    plot(ds, args.spec, args.out[2:])
+
+
+def _readme(args) -> None:
+    """Rewrite the README's generated block from the outputs under ``--inputs`` (the results folder)."""
+    from ..io import git_info
+    from .readme import block, update
+
+    update(Path(args.out[0]), block(Path(args.inputs[0]), git_info()[0]))
+
+
+def _sweep_shard(args) -> None:
+    """One shard of a sweep (``--shard K``) on ``--workers`` processes."""
+    from ..sweeps import registry
+    from ..sweeps.base import run_shard
+
+    import time
+
+    start = time.perf_counter()
+    ds = run_shard(registry()[args.name], args.spec, args.shard, args.workers)
+    write_netcdf(ds, args.out[0])
+    seconds = time.perf_counter() - start
+    print(f"{args.name} shard {args.shard}: {ds.sizes['item']} items in {seconds:.1f} s on {args.workers} "
+          f"workers ({ds.sizes['item'] / seconds / args.workers:.3g} items/s/core, start-up included)", file=sys.stderr)
+
+
+def _sweep_gather(args) -> None:
+    """Every shard of a sweep -> its dataset."""
+    from ..sweeps import registry
+    from ..sweeps.base import gather
+
+    write_netcdf(gather(registry()[args.name], args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
+
+
+def _sweep_figure(args) -> None:
+    """A sweep's figure, from its gathered dataset alone."""
+    from ..sweeps import registry
+
+    registry()[args.name].plot(read_dataset(args.inputs[0]), args.spec, args.out)
+
+
+def _thumbnails(args) -> None:
+    from ..figures.common import thumbnail
+
+    for src, dst in zip(args.inputs, args.out, strict=True):
+        thumbnail(src, dst)
+
+
+TASKS = {
+    "scene": _scene,
+    "sticky-inference": _sticky_inference,
+    "sticky-convergence": _sticky_convergence,
+    "figure": _figure,
+    "check": _check,
+    "check-experiment": _check_experiment,
+    "report": _report,
+    "study": _study,
+    "thumbnails": _thumbnails,
+    "readme": _readme,
+    "sweep-shard": _sweep_shard,
+    "sweep-gather": _sweep_gather,
+    "sweep-figure": _sweep_figure,
+}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m bounce.pipeline.tasks", description=__doc__.splitlines()[0])
+    parser.add_argument("task", choices=sorted(TASKS))
+    parser.add_argument("--name", default="", help="scene or figure name")
+    parser.add_argument("--spec", type=json.loads, default={}, help="the config slice, as JSON")
+    parser.add_argument("--inputs", nargs="*", default=[], help="input netCDF files")
+    parser.add_argument("--out", nargs="+", required=True, help="output file(s)")
+    parser.add_argument("--experiment", default="", help="experiment of a claim group (check-experiment)")
+    parser.add_argument("--shard", type=int, default=0, help="sweep shard index (0-based)")
+    parser.add_argument("--workers", type=int, default=1, help="worker processes (the job's cores)")
+    args = parser.parse_args(argv)
+    TASKS[args.task](args)
+    return 0
+
+
+if __name__ == "__main__":  # the guard also keeps spawned sweep workers from re-running the task
+    sys.exit(main())

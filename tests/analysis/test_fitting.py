@@ -1,0 +1,40 @@
+"""bounce.analysis.fitting's limits of the map eq. mappa: Richardson extrapolation (richardson_ln) and the correction's decay
+exponent (correction_decay), on sequences with known limits and corrections."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bounce.analysis.fitting import correction_decay, log_select, richardson_ln
+
+
+def _sequence(n, L=1.0, c=2.0, d=-3.0, p=1.0, second=5.0):
+    """L + n^-p (c ln n + d) + second (ln n/n)^2: Lemma Giorgio's expansion with a next order."""
+    return L + n**-p * (c * np.log(n) + d) + second * (np.log(n) / n) ** 2
+
+
+def test_richardson_cancels_the_ln_n_over_n_and_1_over_n_terms():
+    n = np.arange(1000.0, 1_000_001.0)
+    L, err = richardson_ln(n, _sequence(n, second=0.0))
+    assert abs(L - 1.0) < 1e-12 and err < 1e-12  # exact for L + (c ln n + d)/n (up to rounding)
+    L, err = richardson_ln(n, _sequence(n))
+    assert abs(L - 1.0) < 1e-8 and abs(L - 1.0) <= err  # the next order: O(ln^2 n/n^2), bounded by the error
+    q = _sequence(n)
+    assert abs(q[-1] - 1.0) > 1e-5  # the raw sequence is far from its limit
+
+
+def test_richardson_on_thinned_records_and_too_short_windows():
+    n = np.unique(np.round(np.geomspace(1000.0, 1e6, 3000)))
+    L, err = richardson_ln(n, _sequence(n))
+    assert abs(L - 1.0) < 1e-8
+    short = n < 3000  # the extrapolation needs n_top/8 (its error's points) inside the records
+    assert np.isnan(richardson_ln(n[short], _sequence(n[short]))[0])
+
+@pytest.mark.parametrize("p", [0.7, 1.0, 1.5])
+def test_correction_decay_recovers_the_exponent(p):
+    n = np.arange(1000.0, 1_000_001.0)
+    s = log_select(n, n[0], n[-1], 2000)
+    est, err, L = correction_decay(n[s], _sequence(n[s], p=p, second=0.0))
+    assert abs(est - p) < 1e-4 and abs(L - 1.0) < 1e-8
+    assert abs(est - p) <= err < 0.5  # conservative: late windows of a fast correction hit the rounding floor

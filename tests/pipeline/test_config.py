@@ -1,0 +1,141 @@
+"""The config contract (bounce.pipeline.config, config/schema.yaml): a bad config stops the run before any job.
+
+Protects: unknown keys rejected in every section, NaN/inf and out-of-range numbers rejected, the
+scene's physical state checked by the model, dangling and shadowing references caught, schema
+defaults filled in, and `snakemake -n` printing one line that names the key.
+"""
+
+import copy
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from snakemake.utils import update_config
+
+from bounce.pipeline.config import ConfigError, validated
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def _with(path: str, value):
+    """The full config with the value at the dotted ``path`` set (or the key added)."""
+    cfg = copy.deepcopy(CONFIG)
+    *parents, last = path.split(".")
+    node = cfg
+    for key in parents:
+        node = node[int(key)] if isinstance(node, list) else node[key]
+    node[last] = value
+    return cfg
+
+
+def test_shipped_configs_are_valid():
+    validated(CONFIG)
+    cfg = copy.deepcopy(CONFIG)
+    update_config(cfg, yaml.safe_load((ROOT / "config" / "ci.yaml").read_text()))
+    validated(cfg)
+
+
+def test_a_check_reads_a_sweep_only_if_the_config_has_it():
+    """A sweep's name is a dataset a check may declare (its gathered file) while config ``sweeps`` runs it."""
+    assert "asymptotic-atlas" in validated(CONFIG)["checks"]["main-theorem"]["inputs"]
+    cfg = copy.deepcopy(CONFIG)
+    del cfg["sweeps"]["asymptotic-atlas"]
+    with pytest.raises(ConfigError, match="checks.main-theorem.inputs.*no dataset named 'asymptotic-atlas'"):
+        validated(cfg)
+
+
+def test_defaults_come_from_the_schema():
+    cfg = copy.deepcopy(CONFIG)
+    del cfg["reduced"]["horizon"]["dps"]
+    assert validated(cfg)["reduced"]["horizon"]["dps"] == 40
+    assert "dps" not in cfg["reduced"]["horizon"]  # the caller's dict is not modified
+
+
+@pytest.mark.parametrize("path", [
+    "scenes.rigid-fall.gama", "scenes.rigid-fall.stop.event", "sticky.inference.nn", "figures.rest-coeff.nmax",
+    "reduced.horizon.tolerance", "reduced.switch.cases.drop-underdamped.psi", "reduced.least_model.scenes.rest-coeff.qoi.r",
+    "methods.work_precision.trackTol", "methods.stability_map.sweeps.0.curve", "methods.scenes.drop.gama",
+    "checks.main-theorem.atlas",  # the atlas is the sweep asymptotic-atlas now: its old key is refused
+    "checks.contact-non-generic.n_samples",  # the Monte Carlo is the sweep contact-monte-carlo
+])
+def test_unknown_key_is_named(path):
+    with pytest.raises(ConfigError) as err:
+        validated(_with(path, 1.0))
+    message = str(err.value)
+    assert "unknown key" in message and repr(path.rsplit(".", 1)[1]) in message
+    assert message.startswith(path.rsplit(".", 1)[0].replace(".0.", ".0."))
+    assert "\n" not in message
+
+
+@pytest.mark.parametrize("path, value, words", [
+    ("scenes.rigid-fall.gamma", float("nan"), "must be a finite number"),
+    ("scenes.rigid-fall.mu", float("inf"), "must be a finite number"),
+    ("scenes.rigid-fall.initial.psi", float("nan"), "finite"),
+    ("scenes.rigid-fall.stop.t_max", float("nan"), "finite"),
+    ("scenes.rigid-fall.gamma", 0.0, "must be > 0"),
+    ("scenes.rigid-fall.gamma", 0.5, "must be < 0.5"),
+    ("scenes.rigid-fall.mu", -1.0, "must be >= 0"),
+    ("scenes.rigid-fall.stop.events", 1.0e12, "must be <= 50000000"),
+    ("sticky.gamma", float("nan"), "finite"),
+    ("reduced.horizon.regimes.chaotic.gamma", float("nan"), "finite"),
+    ("methods.work_precision.n_h", 2.5, "integer"),
+])
+def test_bad_number_is_named(path, value, words):
+    with pytest.raises(ConfigError, match=words) as err:
+        validated(_with(path, value))
+    assert str(err.value).startswith(path)
+
+
+def test_scene_below_the_floor_is_refused_by_the_model():
+    with pytest.raises(ConfigError, match=r"^scenes\.rigid-fall: x0 must be >= 0"):
+        validated(_with("scenes.rigid-fall.initial", {"psi": 0.0, "psidot": 0.0, "xi": 0.5, "xidot": 0.0}))
+
+
+@pytest.mark.parametrize("path, value, words", [
+    ("reduced.least_model.scenes.no-such-scene", {"qoi": {"impact_states": {"tol": 1e-3}}}, "no scene named 'no-such-scene'"),
+    ("figures.rest-coeff.scene", "nosuch", "no scene named 'nosuch'"),
+    ("methods.work_precision.scene", "nosuch", "no scene in methods.scenes named 'nosuch'"),
+    ("scenes.sticky-convergence", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
+    ("scenes.alpha-atlas", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
+    ("checks.nonlinear-atlas.inputs", ["no-such-sweep"], "no dataset named 'no-such-sweep'"),
+    ("checks.main-theorem.inputs", ["asymptotic-underdamped", "asymptotic-atlass"], "no dataset named 'asymptotic-atlass'"),
+])
+def test_dangling_or_shadowing_reference(path, value, words):
+    with pytest.raises(ConfigError, match=words):
+        validated(_with(path, value))
+
+
+def test_snakemake_dry_run_stops_with_one_line(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("scenes:\n  rigid-fall: {gama: 0.01}\n")
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--quiet", "--cores", "1", "--configfile", str(bad)],
+                          cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert proc.returncode != 0
+    lines = [ln for ln in proc.stderr.splitlines() if ln.startswith("config error:")]
+    assert lines == ["config error: scenes.rigid-fall: unknown key 'gama'; allowed: description, gamma, initial, keep, "
+                     "mu, spring, stop"], proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_ci_sized_config_writes_to_its_own_folder(tmp_path):
+    """config/ci.yaml sets workdir: ci-run, so a CI-sized run never writes over the full results/."""
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--quiet", "--cores", "1", "-s", str(ROOT / "Snakefile"),
+                           "--configfile", str(ROOT / "config" / "ci.yaml")],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert (tmp_path / "ci-run" / ".snakemake").is_dir() and not (tmp_path / ".snakemake").exists()
+
+
+def test_jsonschema_is_imported_without_the_iri_grammar_and_leaves_it_importable():
+    """bounce.pipeline.config skips rfc3987_syntax (~2.7 s at import) only while jsonschema imports: no 'iri' checker,
+    the module not loaded, and importable afterwards by anyone else (the block is not left in sys.modules)."""
+    pytest.importorskip("rfc3987_syntax")
+    code = ("import sys, bounce.pipeline.config, jsonschema; "
+            "assert 'rfc3987_syntax' not in sys.modules; "
+            "assert 'iri' not in jsonschema.FormatChecker.checkers; "
+            "import rfc3987_syntax; print('ok')")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.stdout.strip() == "ok", out.stderr

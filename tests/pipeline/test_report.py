@@ -1,0 +1,60 @@
+"""The validation report: subjects in the config's declared order, every pipeline figure linked with the paper's
+figure and caption it reproduces (the captions are data of the figure registry)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from bounce.checks.base import PAPER, REPRODUCED, Verdict, verdict_dataset
+from bounce.figures import FIGURES, pipeline_figures
+from bounce.pipeline.report import ReportError, ordered_subjects, write
+from bounce.studies import STUDIES
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def test_captions_cover_every_stage_figure_and_name_paper_figures():
+    assert all(study.caption.strip() for study in STUDIES.values())
+    tex = Path("/work/shared/paper/stopping-time-bouncing-ball.tex")
+    for name, fig in FIGURES.items():
+        assert fig.caption.text.strip()
+        if fig.caption.paper:  # a reproduced figure carries the paper's label, which is its own name
+            assert fig.caption.paper == f"fig:{name}"
+            if tex.exists():
+                assert f"\\label{{fig:{name}}}" in tex.read_text(encoding="latin-1")
+    paths = [f["path"] for f in pipeline_figures(CONFIG)]
+    assert len(paths) == len(set(paths)) == len(FIGURES) + len(STUDIES) + len(CONFIG["sweeps"])
+
+
+def test_subject_order_follows_the_config():
+    subjects = {"thm:b": "B", "lem:a": "A", "fig:c": "C"}
+    spec = {"subjects": dict(sorted(subjects.items())), "subject_order": list(subjects)}
+    assert list(ordered_subjects(spec)) == ["thm:b", "lem:a", "fig:c"]
+    with pytest.raises(ReportError, match="subject_order"):
+        ordered_subjects({"subjects": subjects, "subject_order": ["thm:b"]})
+
+
+def test_report_links_every_figure_in_order(tmp_path):
+    res = tmp_path / "results"
+    (res / "checks").mkdir(parents=True)
+    v = Verdict("c", "ref", "comp", "e", "m", "t", REPRODUCED, claim_id="g/c", kind=PAPER, subject="lem:a")
+    verdict_dataset([v], title="G").to_netcdf(res / "checks" / "g.nc")
+    figures = pipeline_figures(CONFIG)
+    for f in figures:
+        (tmp_path / f["path"]).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / f["path"]).write_bytes(b"png")
+    figures = [dict(f, path=str(tmp_path / f["path"])) for f in figures]
+    md, html = res / "report" / "validation.md", res / "report" / "validation.html"
+    subjects = ordered_subjects({"subjects": {"lem:a": "A", "thm:b": "B"}, "subject_order": ["thm:b", "lem:a"]})
+    write([res / "checks" / "g.nc"], [res / "checks" / "fig-g.png"], md, html, subjects, {}, figures=figures)
+    text = md.read_text()
+    assert text.index("| B |") < text.index("| A |")
+    for f in figures:
+        link = f"../{Path(f['path']).parent.name}/{Path(f['path']).name}"
+        assert f"]({link})" in text and f"href='{link}'" in html.read_text()
+        assert (md.parent / link).exists()
+    assert "fig. rigid-fall of the paper" in text and "beyond the paper" in text
