@@ -5,17 +5,17 @@ upper mass y_k = x_k + 1 + 2 xi_k; in its own variables psi'' = -gamma, xi'' = -
 (eq. ``eq-motion-psi-xi``), so between events every grain moves in closed form.  Contacts:
 
 * the floor (column, gamma > 0): x_0 = 0, the paper's impact rule (eq. ``collision-rule``),
-  applied exactly as the single-ball loop does (:func:`bounce.events.contact`);
+  applied exactly as the single-ball loop does (:func:`bounce.exact.events.contact`);
 * a pair of neighbours, y_k = x_{k+1} (the ring's seam included): an elastic impact of two equal
   point masses, which exchange their velocities.  With w = x_{k+1}' - y_k' < 0 the gap's velocity,
   in the deviation variables this is  xi_k' += w/2, xi_{k+1}' += w/2, x_{k+1}' -= w  (x_k' and
   y_{k+1}' unchanged).  Energy and momentum are conserved: all dissipation is inside the grains.
 
-State, per grain, as the single-ball core carries it (:mod:`bounce.flight`): its local time stamp
+State, per grain, as the single-ball core carries it (:mod:`bounce.exact.flight`): its local time stamp
 (double-double), x = x_k, u = x_k', a = xi_k', eta = xi_k + gamma, so that the floor contact of grain 0
 keeps the digits of the single ball deep in its asymptotic regime.  Grains are advanced lazily: only
 the grains an event involves, and the neighbours whose predictions it invalidates, are brought to the
-event's time (eq. (F) of :mod:`bounce.flight` and :func:`bounce.flight.flight_spring`).
+event's time (eq. (F) of :mod:`bounce.exact.flight` and :func:`bounce.exact.flight.flight_spring`).
 
 The gap between neighbours is the floor gap's class of function.  With s = xi_k + xi_{k+1}, which
 solves the grains' common damped equation (same mu), and Dpsi = psi_{k+1} - psi_k, linear in time (same
@@ -24,7 +24,7 @@ gravity),
     x_{k+1} - y_k = (gap at 0) + w t + s'(0) (t - S) + s(0) (1 - c)                       (G)
 
 which is eq. (F) with g = 0, u = w, a = s'(0), eta = s(0).  So the first-contact root finder of the
-single ball applies unchanged (:func:`bounce.flight.first_contact`): its curvature bound is
+single ball applies unchanged (:func:`bounce.exact.flight.first_contact`): its curvature bound is
 |gap''| = |s''| <= sqrt(s''(0)^2 + min(s'(0)^2, s'''(0)^2)) (the non-increasing energy of any
 solution of the damped equation, applied to s'' and its neighbours), so a safe step never passes a
 root, and a dip of the gap below zero is missed only if it is shallower than the gap's rounding.  A
@@ -34,14 +34,14 @@ T* = (A - s(0) - gap)/Dpsi' (no contact ever if T* <= 0); with Dpsi' < 0 a conta
 (gap + s(0) + A)/|Dpsi'|; with Dpsi' = 0 the root finder's bounded mode proves a contact impossible
 once A drops below the level.  A search is also cut at :data:`HORIZON_CAP`: the slot then holds a
 re-check at that time (not an event: the prediction is made again from there).  The floor's search
-is the single ball's, hot path included (:func:`bounce.short_flight.short_flight` for a flight from
+is the single ball's, hot path included (:func:`bounce.exact.short_flight.short_flight` for a flight from
 the floor), so one grain on the floor gives the records of :func:`bounce.simulate` bit for bit.
 
 Rounding.  A pair's gap at the start of a prediction is a difference of positions, known to
 ``4 eps (|x_{k+1}| + ell [seam] + |y_k|)``; a gap within that of zero is zero (approximation at the
 rounding level): approaching, the contact is now; separating, the flight starts.  Right after a pair's
 own contact its gap is exactly zero and its velocity exactly -w, whatever the positions' rounding.
-Zero-speed contacts are classified as the single ball's (:mod:`bounce.events`): a grazing exchanges
+Zero-speed contacts are classified as the single ball's (:mod:`bounce.exact.events`): a grazing exchanges
 nothing; a contact that does not open (eq. ``sticky-condition``, or its pair analogue, gap'' < 0 at
 zero speed: a sticky pair) is non-generic (Theorem ``contact-non-generic``) and stops the run
 (:data:`~bounce.gas.common.STOP_STICKY`): this engine follows no sticky phase.
@@ -68,18 +68,11 @@ import math
 import numpy as np
 from numba import njit
 
-from ..events import (
-    GRAZING as SB_GRAZING,
-    STICKY_ONSET,
-    STICKY_START as SB_STICKY,
-    _is_sticky_onset,
-    _is_tangential,
-    contact,
-    rounding_level,
-)
-from ..flight import EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_spring, gap, liftoff_time, xi_derivatives
-from ..oscillator import P_MU, P_RHO
-from ..short_flight import HANDOVER, MAX_DEGREE, short_flight
+from ..exact.events import STICKY_ONSET, _is_sticky_onset, _is_tangential, contact, rounding_level
+from ..exact.flight import EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_spring, gap, liftoff_time, xi_derivatives
+from ..exact.oscillator import P_MU, P_RHO
+from ..exact.short_flight import HANDOVER, MAX_DEGREE, short_flight
+from ..kinds import GRAZING as SB_GRAZING, STICKY_START as SB_STICKY
 from .common import (
     C_EVENTS, C_SNAPS, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_PAIR, GRAZING, K_HI, K_LO, PAIR,
     STOP_EVENTS, STOP_FAILED, STOP_OVERLAP, STOP_QUIET, STOP_STICKY, STOP_TIME, above_slot, below_slot,
@@ -142,8 +135,8 @@ def _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work):
     Returns ``(status, tau, v, scale, eta_t, xid_t)``: FOUND with the contact time, the gap's velocity,
     its rounding scale (``scale0``, that of x0, plus eq. (F)'s at the contact) and the oscillator's state
     (eta or s, and its derivative) at the contact;
-    HORIZON, NEVER or FAILED as :func:`bounce.flight.first_contact`; or -1 for a contact at zero speed
-    that does not open (x0 = u = 0 and no lift-off beyond ``window``, :func:`bounce.flight.liftoff_time`).
+    HORIZON, NEVER or FAILED as :func:`bounce.exact.flight.first_contact`; or -1 for a contact at zero speed
+    that does not open (x0 = u = 0 and no lift-off beyond ``window``, :func:`bounce.exact.flight.liftoff_time`).
     From x0 = 0: moving away, the single ball's search (hot path first); at rest, from the lift-off
     time; approaching, the contact is now (tau = 0).
     """

@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..flight import EPS
+from ..exact.flight import EPS
 from .common import (
     C_EVENTS, C_HIGH, C_LOW, C_RUN, C_SNAPS, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_ELASTIC, FLOOR_PAIR, K_HI, K_LO, PAIR,
     PAIR_ELASTIC, STOP_COLLAPSE, STOP_EVENTS, STOP_QUIET, STOP_TIME, above_slot, below_slot, slot_grains,

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..oscillator import make_oscillator
+from ..exact.oscillator import make_oscillator
 from .common import (
     C_EVENTS, C_HIGH, C_LOW, C_RUN, C_STOP, C_WHERE, CLOCK_SIZE, CTL_SIZE, GEOMETRY_NAMES, K_HI, K_LO, KIND_NAMES,
     STOP_COLLAPSE, STOP_FAILED, STOP_NAMES, STOP_OVERLAP, STOP_STICKY, Records,
@@ -280,6 +280,6 @@ def simulate_rigid(params: RigidParameters, initial: RigidState, max_events: int
 
 def energy_excess(params: GasParameters, fields: dict) -> np.ndarray:
     """Per-grain E - E_m = (xi'^2 + psi'^2 + eta^2)/2 + gamma x (eqs. tot-mech-energy, Emin; the single ball's
-    :func:`bounce.events.energy_excess`) of snapshot fields (any shape); the gas's total is the sum over grains."""
+    :func:`bounce.exact.events.energy_excess`) of snapshot fields (any shape); the gas's total is the sum over grains."""
     u, a, eta, x = fields["xdot"], fields["xidot"], fields["eta"], fields["x"]
     return 0.5 * (a * a + (u + a) * (u + a) + eta * eta) + params.gamma * x
