@@ -32,8 +32,7 @@ pair's search is cut where no contact can come: with A = sqrt(s^2 + s'^2) (|s(t)
 and Dpsi' = w + s' > 0, the gap exceeds (gap at 0) + s(0) - A + Dpsi' t, positive beyond
 T* = (A - s(0) - gap)/Dpsi' (no contact ever if T* <= 0); with Dpsi' < 0 a contact comes before
 (gap + s(0) + A)/|Dpsi'|; with Dpsi' = 0 the root finder's bounded mode proves a contact impossible
-once A drops below the level.  A search is also cut at :data:`HORIZON_CAP`: the slot then holds a
-re-check at that time (not an event: the prediction is made again from there).  The floor's search
+once A drops below the level.  The floor's search
 is the single ball's, hot path included (:func:`bounce.exact.short_flight.short_flight` for a flight from
 the floor), so one grain on the floor gives the records of :func:`bounce.simulate` bit for bit.
 
@@ -87,14 +86,12 @@ GRAIN_FIELDS = 6
 # ended at (gap velocity, rounding scale, spring state (eta or s, s') at the contact), and its type
 S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
 SLOT_FIELDS = 8
-# slot types: a contact; a re-check (the search was cut at HORIZON_CAP); a contact that does not open
-# (the run stops there); a failed search (the run stops there)
-T_CONTACT, T_RECHECK, T_STICKY, T_FAILED = 0.0, 1.0, 2.0, 3.0
+# slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
+# stops there)
+T_CONTACT, T_STICKY, T_FAILED = 0.0, 1.0, 2.0
 #: the snapshot fields of a dimer gas: x, x', xi', eta per grain
 SNAP_FIELDS = 4
 
-#: longest pair search (time units, ~40 spring periods) before the slot re-checks from there
-HORIZON_CAP = 256.0
 #: the internal energy bound: xi^2 + xi'^2 < 1/4 keeps 1 + 2 xi > 0 until the grain's next event
 AMPLITUDE2_MAX = 0.25
 
@@ -166,8 +163,8 @@ def _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work):
 
 @njit(cache=True)
 def _pair_limit(x0, u, a, eta, room):
-    """Where a pair's search may stop (module docstring: T*, capped by HORIZON_CAP and ``room``, the
-    time left before t_max), and whether a HORIZON there proves there is no contact."""
+    """Where a pair's search may stop (module docstring: T*, or ``room``, the time left before t_max, if
+    that is sooner), and whether a HORIZON there proves there is no contact."""
     dpsi = u + a
     amp = math.sqrt(eta * eta + a * a)
     if dpsi > 0.0:
@@ -179,7 +176,7 @@ def _pair_limit(x0, u, a, eta, room):
         t_star = (x0 + eta + amp) / -dpsi * (1.0 + 1e-12) + 1e-300
     else:
         t_star = math.inf
-    limit = min(t_star, HORIZON_CAP, room)
+    limit = min(t_star, room)
     return limit, dpsi > 0.0 and limit == t_star
 
 
@@ -213,15 +210,8 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
         update(s, k_hi, k_lo, heap, pos, khi, klo)
     elif status == NEVER or (status == HORIZON and proves):
         update(s, math.inf, 0.0, heap, pos, khi, klo)
-    elif t_limit == room:  # beyond t_max: after every event of the run, never fired
+    else:  # HORIZON at t_max: after every event of the run, never fired
         update(s, t_max, math.inf, heap, pos, khi, klo)
-    else:  # cut at HORIZON_CAP: search again from there
-        sl[s, S_T0H] = t_hi
-        sl[s, S_T0L] = t_lo
-        sl[s, S_TAU] = t_limit
-        sl[s, S_TYPE] = T_RECHECK
-        k_hi, k_lo = add_time(t_hi, t_lo, t_limit)
-        update(s, k_hi, k_lo, heap, pos, khi, klo)
 
 
 @njit(cache=True)
@@ -332,11 +322,6 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             clock[K_HI], clock[K_LO] = t_hi, t_lo
             break
         i, j, seam = slot_grains(s, n, geometry)
-        if kind_slot == T_RECHECK:
-            _bring(g, i, t_hi, t_lo, gamma, params, coefs)
-            _bring(g, j, t_hi, t_lo, gamma, params, coefs)
-            _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work)
-            continue
         if i < 0:
             # ---------------------------------------------------------------- floor (grain 0)
             u0, a0 = g[0, G_U], g[0, G_A]
