@@ -39,11 +39,27 @@ the floor), so one grain on the floor gives the records of :func:`bounce.simulat
 Rounding.  A pair's gap at the start of a prediction is a difference of positions, known to
 ``4 eps (|x_{k+1}| + ell [seam] + |y_k|)``; a gap within that of zero is zero (approximation at the
 rounding level): approaching, the contact is now; separating, the flight starts.  Right after a pair's
-own contact its gap is exactly zero and its velocity exactly -w, whatever the positions' rounding.
-Zero-speed contacts are classified as the single ball's (:mod:`bounce.exact.events`): a grazing exchanges
-nothing; a contact that does not open (eq. ``sticky-condition``, or its pair analogue, gap'' < 0 at
-zero speed: a sticky pair) is non-generic (Theorem ``contact-non-generic``) and stops the run
-(:data:`~bounce.gas.common.STOP_STICKY`): this engine follows no sticky phase.
+own contact its gap is exactly zero and its velocity exactly -w, whatever the positions' rounding.  So
+a pair's contacts are resolved to that rounding: the time of a contact approached at speed w to
+~8 eps max|x| / w.  On a ring with net momentum the positions grow like the centre of mass's velocity
+times t and the resolution degrades with them (start rings with zero total momentum).
+
+Zero-speed contacts.  The floor's are classified as the single ball's (:mod:`bounce.exact.events`):
+a grazing exchanges nothing, a sticky onset (eq. ``sticky-condition``) stops the run.  A pair contact
+is classified with the same rounding windows (:func:`bounce.exact.events.contact`'s), at the rounding
+level of its gap:
+
+* approaching (w < 0): an impact, whatever the speed (a grazing would let the masses pass each other
+  by up to 16 times the rounding level, the depth of the dip the window allows), unless the contact
+  is tangential with gap'' < 0 (a sticky onset: the masses pressed together at zero speed, eq.
+  ``sticky-condition``'s pair analogue), which is non-generic (Theorem ``contact-non-generic``) and
+  stops the run (:data:`~bounce.gas.common.STOP_STICKY`): this engine follows no sticky phase;
+* not approaching (a tangential minimum of the gap): a grazing, nothing exchanged;
+* relaxed: a tangential contact whose springs' sum s has an amplitude sqrt(s^2 + s'^2) below the
+  rounding level.  Nothing resolvable moves the two touching masses; it is recorded as a grazing and
+  the pair predicts no contact until an event changes one of its grains.  This is how a collision of
+  two grains with relaxed springs ends when mu >= 1: the gap is |w| S(t) > 0 (S the oscillator's
+  fundamental solution, positive for mu >= 1), decaying to zero without reaching it.
 
 Grains' own masses never pass.  Between its events a grain's spring is a damped oscillator whose
 energy (xi^2 + xi'^2)/2 never increases, and y_k - x_k = 1 + 2 xi_k > 0 as long as |xi_k| < 1/2: the
@@ -372,25 +388,28 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             acc = -z2
             jerk = -z3
             xn = rounding_level(sl[s, S_SCALE])
-            if not _is_tangential(w, acc, jerk, xn):
+            tangential = _is_tangential(w, acc, jerk, xn)
+            window = 0.0
+            if tangential and s0 * s0 + (g[i, G_A] + g[j, G_A]) ** 2 <= xn * xn:
+                kind = GRAZING  # relaxed: nothing resolvable moves the touching masses (module docstring)
+                u_new = 0.0
+                window = -1.0
+            elif w < 0.0 and not (tangential and _is_sticky_onset(acc, jerk, xn)):
                 half = 0.5 * w
                 g[i, G_A] += half
                 g[j, G_A] += half
                 g[j, G_U] -= w
                 kind = PAIR
                 u_new = -w
-                window = 0.0
-            else:
+            elif w < 0.0:
+                ctl[C_STOP] = STOP_STICKY
+                ctl[C_WHERE] = s
+                clock[K_HI], clock[K_LO] = t_hi, t_lo
+                break
+            else:  # not approaching (a tangential minimum of the gap): nothing exchanged
                 kind = GRAZING
-                u_new = 0.0
+                u_new = w
                 window = (STICKY_ONSET * jerk * jerk * xn) ** (1.0 / 3.0)
-                if s0 * s0 + (g[i, G_A] + g[j, G_A]) ** 2 <= xn * xn:
-                    window = -1.0  # relaxed: nothing resolvable moves the touching masses (module docstring)
-                elif _is_sticky_onset(acc, jerk, xn):
-                    ctl[C_STOP] = STOP_STICKY
-                    ctl[C_WHERE] = s
-                    clock[K_HI], clock[K_LO] = t_hi, t_lo
-                    break
             rec_t[rec] = t_hi + t_lo
             rec_kind[rec] = kind
             rec_pair[rec] = s
