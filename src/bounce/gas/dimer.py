@@ -28,11 +28,13 @@ single ball applies unchanged (:func:`bounce.exact.flight.first_contact`): its c
 |gap''| = |s''| <= sqrt(s''(0)^2 + min(s'(0)^2, s'''(0)^2)) (the non-increasing energy of any
 solution of the damped equation, applied to s'' and its neighbours), so a safe step never passes a
 root, and a dip of the gap below zero is missed only if it is shallower than the gap's rounding.  A
-pair's search is cut where no contact can come: with A = sqrt(s^2 + s'^2) (|s(t)| <= A for t >= 0)
-and Dpsi' = w + s' > 0, the gap exceeds (gap at 0) + s(0) - A + Dpsi' t, positive beyond
-T* = (A - s(0) - gap)/Dpsi' (no contact ever if T* <= 0); with Dpsi' < 0 a contact comes before
-(gap + s(0) + A)/|Dpsi'|; with Dpsi' = 0 the root finder's bounded mode proves a contact impossible
-once A drops below the level.  The floor's search
+pair's search is confined to where a contact can be: with A = sqrt(s^2 + s'^2) (|s(t)| <= A for
+t >= 0) the gap lies between (gap at 0) + s(0) + Dpsi' t -/+ A.  With Dpsi' = w + s' > 0 it is
+positive beyond T* = (A - s(0) - gap)/Dpsi' (no contact ever if T* <= 0); with Dpsi' < 0 a contact
+comes before T* = (gap + s(0) + A)/|Dpsi'| and none before (gap + s(0) - A)/|Dpsi'|, where the
+search starts (two grains drifting together at 1e-10 with springs ringing at 0.1 would otherwise
+be marched through 4e11 time units, a few steps per spring period); with Dpsi' = 0 the root finder's
+bounded mode proves a contact impossible once A drops below the level.  The floor's search
 is the single ball's, hot path included (:func:`bounce.exact.short_flight.short_flight` for a flight from
 the floor), so one grain on the floor gives the records of :func:`bounce.simulate` bit for bit.
 
@@ -142,7 +144,7 @@ def _bring(g, k, t_hi, t_lo, gamma, params, coefs):
 
 
 @njit(cache=True)
-def _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work):
+def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, work):
     """First contact of a gap of eq. (F) (G = gamma: the floor; G = 0: a pair, eq. (G)) from x0 >= 0.
 
     Returns ``(status, tau, v, scale, eta_t, xid_t)``: FOUND with the contact time, the gap's velocity,
@@ -150,11 +152,11 @@ def _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work):
     (eta or s, and its derivative) at the contact;
     HORIZON, NEVER or FAILED as :func:`bounce.exact.flight.first_contact`; or -1 for a contact at zero speed
     that does not open (x0 = u = 0 and no lift-off beyond ``window``, :func:`bounce.exact.flight.liftoff_time`).
-    From x0 = 0: moving away, the single ball's search (hot path first); at rest, from the lift-off
-    time; approaching, the contact is now (tau = 0).
+    From x0 > 0 the search starts at ``t_start`` (the caller proves x > 0 before it).  From x0 = 0:
+    moving away, the single ball's search (hot path first); at rest, from the lift-off time;
+    approaching, the contact is now (tau = 0).
     """
     mu = params[P_MU]
-    t_start = 0.0
     if x0 == 0.0:
         if u < 0.0:
             return FOUND, 0.0, u, scale0, eta, a
@@ -178,22 +180,27 @@ def _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work):
 
 
 @njit(cache=True)
-def _pair_limit(x0, u, a, eta, room):
-    """Where a pair's search may stop (module docstring: T*, or ``room``, the time left before t_max, if
-    that is sooner), and whether a HORIZON there proves there is no contact."""
+def _pair_limits(x0, u, a, eta, room):
+    """The window a pair's contact can lie in (module docstring): ``(start, limit, proves)``, the search
+    may start at ``start`` (the gap is positive before it) and stop at ``limit`` (T*, or ``room``, the
+    time left before t_max, if that is sooner); ``proves``: a HORIZON at ``limit`` proves there is no
+    contact.  The bounds carry a relative margin of 1e-12 for their own rounding."""
     dpsi = u + a
     amp = math.sqrt(eta * eta + a * a)
+    margin = 1e-12 * (x0 + abs(eta) + amp)
+    start = 0.0
     if dpsi > 0.0:
-        t_star = (amp - eta - x0) / dpsi
+        t_star = (amp - eta - x0 + margin) / dpsi
         if not t_star > 0.0:
-            return 0.0, True
-        t_star *= 1.0 + 1e-12
+            return 0.0, 0.0, True
     elif dpsi < 0.0:
-        t_star = (x0 + eta + amp) / -dpsi * (1.0 + 1e-12) + 1e-300
+        t_star = (x0 + eta + amp + margin) / -dpsi
+        if x0 > 0.0:
+            start = max((x0 + eta - amp - margin) / -dpsi, 0.0)
     else:
         t_star = math.inf
     limit = min(t_star, room)
-    return limit, dpsi > 0.0 and limit == t_star
+    return min(start, limit), limit, dpsi > 0.0 and limit == t_star
 
 
 @njit(cache=True)
@@ -201,13 +208,14 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
     """Search slot s's next contact from (t_hi, t_lo) and queue it (module docstring)."""
     room = t_max - t_hi - t_lo
     if G == 0.0:
-        t_limit, proves = _pair_limit(x0, u, a, eta, room)
+        t_start, t_limit, proves = _pair_limits(x0, u, a, eta, room)
         if t_limit == 0.0 and proves:
             update(s, math.inf, 0.0, heap, pos, khi, klo)
             return
     else:
-        t_limit, proves = room, False
-    status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_limit, params, coefs, work)
+        t_start, t_limit, proves = 0.0, room, False
+    status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs,
+                                                  work)
     kind = T_CONTACT
     if status == FOUND or status == -1 or status == FAILED:
         if status == -1:

@@ -52,7 +52,7 @@ def _number(name: str, value, allowed: str) -> float:
 def _geometry(n: int, geometry, gamma, ell) -> tuple[str, float, float]:
     """The geometry's checks, shared by both models: (geometry, gamma, ell)."""
     if geometry not in GEOMETRIES:
-        raise InputError(f"geometry must be one of {', '.join(GEOMETRIES)}, got {geometry!r}")
+        raise InputError(f"geometry must be one of {', '.join(GEOMETRIES)} (allowed values), got {geometry!r}")
     if geometry == "column":
         gamma = _number("gamma", gamma, f"[{GAMMA_MIN:g}, {GAMMA_MAX}) for the column")
         if not GAMMA_MIN <= gamma < GAMMA_MAX:
