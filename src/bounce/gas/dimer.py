@@ -107,8 +107,6 @@ SLOT_FIELDS = 8
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
 # stops there)
 T_CONTACT, T_STICKY, T_FAILED = 0.0, 1.0, 2.0
-#: the snapshot fields of a dimer gas: x, x', xi', eta per grain
-SNAP_FIELDS = 4
 
 #: the internal energy bound: xi^2 + xi'^2 < 1/4 keeps 1 + 2 xi > 0 until the grain's next event
 AMPLITUDE2_MAX = 0.25

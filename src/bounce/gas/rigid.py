@@ -37,7 +37,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from ..exact.flight import EPS
@@ -50,8 +49,6 @@ from .queue import add_time, heapify, time_since, update
 # columns of the grain array: local time stamp (double-double), x, x', time of the last collision
 R_TH, R_TL, R_X, R_V, R_LAST = range(5)
 RIGID_FIELDS = 5
-#: the snapshot fields of a rigid gas: x, x' per grain
-RIGID_SNAP_FIELDS = 2
 #: consecutive unresolved events that make a collapse (module docstring)
 COLLAPSE_RUN = 64
 

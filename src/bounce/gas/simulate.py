@@ -29,12 +29,12 @@ from ..errors import InputError
 from ..exact.oscillator import make_oscillator
 from .common import (
     C_EVENTS, C_HIGH, C_LOW, C_RUN, C_STOP, C_WHERE, CLOCK_SIZE, CTL_SIZE, GEOMETRY_NAMES, K_HI, K_LO, KIND_NAMES,
-    STOP_COLLAPSE, STOP_FAILED, STOP_NAMES, STOP_OVERLAP, STOP_STICKY, Records,
+    STOP_COLLAPSE, STOP_NAMES, STOP_OVERLAP, STOP_STICKY, Records,
 )
-from .dimer import GRAIN_FIELDS, G_A, G_ETA, G_U, G_X, SLOT_FIELDS, SNAP_FIELDS, dimer_run, dimer_snapshot, dimer_start
+from .dimer import GRAIN_FIELDS, G_A, G_ETA, G_U, G_X, SLOT_FIELDS, dimer_run, dimer_snapshot, dimer_start
 from .model import GasParameters, GasState, RigidParameters, RigidState
 from .queue import empty_queue
-from .rigid import R_LAST, R_V, R_X, RIGID_FIELDS, RIGID_SNAP_FIELDS, rigid_run, rigid_snapshot, rigid_start
+from .rigid import R_LAST, R_V, R_X, RIGID_FIELDS, rigid_run, rigid_snapshot, rigid_start
 
 #: snapshot fields of each model, in the kernels' order
 DIMER_FIELDS = ("x", "xdot", "xidot", "eta")
@@ -72,11 +72,12 @@ class GasRun:
     """One run of either engine: its arrays, its kernel calls in chunks, its stop.
 
     ``step(m)`` advances by up to m events and returns the chunk's :class:`~bounce.gas.common.Records`
-    with the numbers recorded; ``final()`` is every grain's state at the last event's time.
+    with the numbers recorded; ``final()`` is every grain's state at the last event's time; ``arrays()``
+    the engine's whole state, from which ``GasRun(..., arrays=...)`` continues bit for bit.
     """
 
     def __init__(self, params: GasParameters | RigidParameters, initial: GasState | RigidState, t_max: float,
-                 every: int):
+                 every: int, arrays: dict | None = None):
         initial.check(params)
         self.params, self.initial, self.t_max, self.every = params, initial, t_max, every
         self.rigid = isinstance(params, RigidParameters)
@@ -85,24 +86,33 @@ class GasRun:
         self.heap, self.pos, self.khi, self.klo = empty_queue(n)
         self.ctl = np.zeros(CTL_SIZE, dtype=np.int64)
         self.clock = np.zeros(CLOCK_SIZE)
-        if self.rigid:
-            self.fields = RIGID_FIELDS_NAMES
-            self.g = np.zeros((n, RIGID_FIELDS))
+        self.fields = RIGID_FIELDS_NAMES if self.rigid else DIMER_FIELDS
+        self.g = np.zeros((n, RIGID_FIELDS if self.rigid else GRAIN_FIELDS))
+        if not self.rigid:
+            self.osc = make_oscillator(params.mu)
+            self.sl = np.zeros((n, SLOT_FIELDS))
+        self.records = None
+        if arrays is not None:
+            for name in self._state_names():
+                getattr(self, name)[...] = arrays[name]
+        elif self.rigid:
             self.g[:, R_X], self.g[:, R_V] = initial.x, initial.xdot
             self.g[:, R_LAST] = -np.inf
             rigid_start(self.geometry, n, params.gamma, params.wrap, params.size, self.g, self.heap, self.pos,
                         self.khi, self.klo)
         else:
-            self.fields = DIMER_FIELDS
-            self.osc = make_oscillator(params.mu)
-            self.g = np.zeros((n, GRAIN_FIELDS))
             x, u, a, eta = initial.deviations(params.gamma)
             self.g[:, G_X], self.g[:, G_U], self.g[:, G_A], self.g[:, G_ETA] = x, u, a, eta
-            self.sl = np.zeros((n, SLOT_FIELDS))
             dimer_start(self.geometry, n, params.gamma, params.wrap, t_max, *self.osc, self.g, self.sl, self.heap,
                         self.pos, self.khi, self.klo)
-        self.stop = STOP_NAMES[0]
-        self.records = None
+        self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
+
+    def _state_names(self) -> tuple[str, ...]:
+        return ("g", "heap", "pos", "khi", "klo", "ctl", "clock") + (() if self.rigid else ("sl",))
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """The engine's whole state (grains, slots, queue, control): copies."""
+        return {name: getattr(self, name).copy() for name in self._state_names()}
 
     @property
     def events(self) -> int:
