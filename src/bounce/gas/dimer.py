@@ -69,13 +69,14 @@ paper's energy condition (eq. ``max-ini-energy``) applied to each grain's intern
 xi^2 + xi'^2 < 1/4.  Only events change it (an exchange changes xi'), so it is checked after every
 event for the grains involved; the run stops (:data:`~bounce.gas.common.STOP_OVERLAP`, naming the
 grain) the first time it fails, before any pass could happen.  It is a sufficient condition: a grain
-that fails it may still not collapse.
+that fails it may still keep its masses apart.
 
 Queue: one slot per contact (:mod:`bounce.gas.common`) in the indexed heap of
 :mod:`bounce.gas.queue`; a pair event invalidates three predictions (its own and its two neighbours'),
-a floor event two: O(log n) per event.  A slot caches the state the search ended at (contact speed,
-rounding scale, the spring at the contact); it is used when the grain is still at the prediction's
-origin (always for one grain), otherwise the grains are advanced by the time difference.
+a floor event two: O(log n) per event.  A slot keeps what its search ended at: the duration, by which
+grains still at the prediction's origin are advanced (others by the difference of the double-double
+times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
+the impact rule uses as the single ball's loop does (always, for one grain).
 """
 
 from __future__ import annotations
