@@ -55,6 +55,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model import check_supported
+from ..trajectory import run_into_trajectory, stop_rules
 from ..kinds import (DETACH, GRAZING, IMPACT, STICKY_START, STOP_ENERGY, STOP_EVENTS, STOP_FAILED,
                      STOP_STICKY_FOREVER, STOP_TIME)
 from .flight import (
@@ -69,7 +71,7 @@ from .flight import (
     oscillator_at,
     xi_derivatives,
 )
-from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO
+from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO, make_oscillator
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight
 
 
@@ -416,3 +418,19 @@ def run_events(
         carry[C_STICKY] = 1.0 if sticky else 0.0
         carry[C_RESUME] = 1.0
     return n, stop, t_hi + t_lo
+
+
+def simulate_linear(params, initial, max_events: int = 1000, t_max: float = math.inf, energy_stop: float = 0.0):
+    """Simulate the paper's linear spring from ``initial`` (a :class:`bounce.model.State`, or
+    :class:`bounce.model.Deviations`): validated stop rules and supported domain
+    (:func:`bounce.model.check_supported`), the oscillator tables of mu and mu/sqrt(2) (flights, sticky
+    phases), then :func:`run_events` into a :class:`bounce.trajectory.Trajectory`."""
+    max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
+    start = initial.deviations(params)
+    check_supported(params, start)
+    params_arr, coefs = make_oscillator(params.mu)
+    sparams, scoefs = make_oscillator(params.mu / SQRT2)
+    return run_into_trajectory(
+        lambda *buffers: run_events(start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs,
+                                    sparams, scoefs, max_events, t_max, energy_stop, *buffers),
+        params, initial, (max_events, t_max, energy_stop), "root finder")
