@@ -421,8 +421,8 @@ def main(argv=None) -> int:
             return check_main(argv[1:])
         argv = _join_negative_numbers(argv)
         _reject_repeated_options(argv)
-        if argv[:1] == ["gas"]:  # a gas of grains (bounce.gas.cli)
-            from .gas.cli import main as gas_main
+        if argv[:1] == ["gas"]:  # a gas of grains (bounce.gas_cli)
+            from .gas_cli import main as gas_main
 
             return gas_main(argv[1:])
         args = build_parser().parse_args(argv)

@@ -121,6 +121,9 @@ def test_cli_writes_a_file(tmp_path):
     (["--n", "10", "--geometry", "column", "--model", "rigid"], "--r is required with --model rigid"),
     (["--n", "10", "--geometry", "column", "--model", "rigid", "--r", "2"], "r must be in [0, 1]"),
     (["--n", "10", "--geometry", "column", "--mu", "0.1", "--mu", "0.2"], "--mu is given more than once"),
+    (["--n", "10", "--geometry", "column", "--mu", "abc"], "argument --mu: invalid float value"),
+    (["--n", "10", "--geometry", "column", "--events", "0"], "max_events must be an integer in [1,"),
+    (["--n", "10", "--geometry", "column", "--speed", "-1"], "--speed must be in [0, inf)"),
     (["--n", "3", "--geometry", "column", "--state", "missing.npz"], "--state must be an .npz file"),
     (["--n", "10", "--geometry", "box"], "argument --geometry: invalid choice"),
 ])

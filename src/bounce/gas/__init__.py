@@ -4,7 +4,7 @@ the floor or on a ring, and its rigid counterpart with a constant restitution (a
 Engines: :mod:`bounce.gas.dimer`, :mod:`bounce.gas.rigid`; their shared queue and slots:
 :mod:`bounce.gas.queue`, :mod:`bounce.gas.common`; inputs: :mod:`bounce.gas.model`; the Python front:
 :mod:`bounce.gas.simulate`; netCDF: :mod:`bounce.gas.io`; the command line ``python -m bounce gas``:
-:mod:`bounce.gas.cli`.
+:mod:`bounce.gas_cli` (in the command-line layer).
 """
 
 from .common import KIND_NAMES, STOP_NAMES

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .. import __version__
+from .._version import __version__
 from ..errors import InputError
 from ..io import CODECS, REFERENCES, UNITS_COMMENT, git_info
 from .common import KIND_NAMES
