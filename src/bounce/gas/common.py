@@ -32,11 +32,11 @@ FLOOR_PAIR = -1
 STOP_NAMES = ("max_events", "t_max", "no_more_events", "overlap", "sticky", "collapse", "root_finder_failed")
 
 # slots of the int64 control array ``ctl`` a run carries between calls (the engines' state beside
-# the grain, slot and queue arrays): events recorded so far, snapshots taken so far, why it stopped,
-# the grain or slot the stop concerns, and, for the rigid engine's collapse detector, the current run
-# of unresolved events and the lowest and highest grain in it
-C_EVENTS, C_SNAPS, C_STOP, C_WHERE, C_RUN, C_LOW, C_HIGH = range(7)
-CTL_SIZE = 7
+# the grain, slot and queue arrays): events recorded so far, why it stopped, the grain or slot the
+# stop concerns, and, for the rigid engine's collapse detector, the current run of unresolved events
+# and the lowest and highest grain in it
+C_EVENTS, C_STOP, C_WHERE, C_RUN, C_LOW, C_HIGH = range(6)
+CTL_SIZE = 6
 # slots of the float64 control array ``clock``: the time of the last event (double-double)
 K_HI, K_LO = range(2)
 CLOCK_SIZE = 2

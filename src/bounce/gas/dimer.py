@@ -92,7 +92,7 @@ from ..exact.oscillator import P_MU, P_RHO
 from ..exact.short_flight import HANDOVER, MAX_DEGREE, short_flight
 from ..kinds import GRAZING as SB_GRAZING, STICKY_START as SB_STICKY
 from .common import (
-    C_EVENTS, C_SNAPS, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_PAIR, GRAZING, K_HI, K_LO, PAIR,
+    C_EVENTS, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_PAIR, GRAZING, K_HI, K_LO, PAIR,
     STOP_EVENTS, STOP_FAILED, STOP_OVERLAP, STOP_QUIET, STOP_STICKY, STOP_TIME, above_slot, below_slot,
     slot_grains,
 )
@@ -447,7 +447,6 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             snap_event[snaps] = done
             dimer_snapshot(g, t_hi, t_lo, gamma, params, coefs, snap, snaps)
             snaps += 1
-            ctl[C_SNAPS] += 1
         if bad >= 0:
             ctl[C_STOP] = STOP_OVERLAP
             ctl[C_WHERE] = bad

@@ -41,7 +41,7 @@ from numba import njit
 
 from ..exact.flight import EPS
 from .common import (
-    C_EVENTS, C_HIGH, C_LOW, C_RUN, C_SNAPS, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_ELASTIC, FLOOR_PAIR, K_HI, K_LO, PAIR,
+    C_EVENTS, C_HIGH, C_LOW, C_RUN, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_ELASTIC, FLOOR_PAIR, K_HI, K_LO, PAIR,
     PAIR_ELASTIC, STOP_COLLAPSE, STOP_EVENTS, STOP_QUIET, STOP_TIME, above_slot, below_slot, slot_grains,
 )
 from .queue import add_time, heapify, time_since, update
@@ -193,7 +193,6 @@ def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, heap, pos, khi, k
             snap_event[snaps] = done
             rigid_snapshot(g, t_hi, t_lo, gamma, snap, snaps)
             snaps += 1
-            ctl[C_SNAPS] += 1
         if unresolvable or ctl[C_RUN] >= COLLAPSE_RUN:
             ctl[C_STOP] = STOP_COLLAPSE
             ctl[C_WHERE] = s if unresolvable else -1
