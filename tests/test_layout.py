@@ -25,12 +25,12 @@ LAYERS = {
     "trajectory": 2,
     "exact": 3, "series": 3,
     "simulate": 4, "sampling": 4,
-    "io": 5, "stream": 5, "scenes": 5,
+    "io": 5, "stream": 5, "scenes": 5, "gas": 5,
     "analysis": 6,
     "methods": 7, "figures": 7,
     "studies": 8, "sweeps": 8, "checks": 8,
     "pipeline": 9,
-    "claims_cli": 10, "cli": 10, "__main__": 10, "__init__": 10,
+    "claims_cli": 10, "cli": 10, "gas_cli": 10, "__main__": 10, "__init__": 10,
 }
 PLUGIN_FOLDERS = ("checks", "sweeps", "studies", "methods")
 

@@ -442,6 +442,10 @@ def main(argv=None) -> int:
             return check_main(argv[1:])
         argv = _join_negative_numbers(argv)
         _reject_repeated_options(argv)
+        if argv[:1] == ["gas"]:  # a gas of grains (bounce.gas_cli)
+            from .gas_cli import main as gas_main
+
+            return gas_main(argv[1:])
         args = build_parser().parse_args(argv)
         if args.command == "simulate":
             return _simulate_command(args)
