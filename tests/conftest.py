@@ -1,14 +1,14 @@
-"""Settings shared by the whole test suite: the fast default and ``--all``, hypothesis's profile.
+"""Settings shared by the whole test suite: the fast default and ``--all``, hypothesis's profile, shared fixtures.
 
 ``python -m pytest`` runs the unit, reference and property tests; tests marked ``slow`` (integration: the
-CI-sized pipeline, SLURM, the CI-sized sweeps, anything that takes more than ~5 s) are deselected.
-``python -m pytest --all`` runs every test, with the long fuzz (``tests/test_fuzz.py``: 400 examples per
-test instead of 100); ``.ci/run`` runs it.  ``-m EXPR`` selects by marker as usual (``-m slow``: the slow
-tests only) and then replaces the default deselection.
+CI-sized pipeline and what reads it, SLURM, the long fuzz, anything that takes more than ~5 s) are deselected.
+``python -m pytest --all`` runs every test; ``.ci/run`` runs it.  ``-m EXPR`` selects by marker as usual
+(``-m slow``: the slow tests only) and then replaces the default deselection.
 """
 
 import fcntl
 import os
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -20,18 +20,10 @@ from hypothesis import settings
 settings.register_profile("bounce", derandomize=os.environ.get("BOUNCE_HYPOTHESIS_RANDOM") != "1")
 settings.load_profile("bounce")
 
-#: examples per fuzz test (tests/test_fuzz.py) in the default run and with --all; BOUNCE_FUZZ_EXAMPLES overrides both
-FUZZ_EXAMPLES = {"default": 100, "all": 400}
-
 
 def pytest_addoption(parser):
     parser.addoption("--all", action="store_true", dest="run_all",
-                     help="bounce: run every test, the slow ones (integration) included, with the long fuzz (CI)")
-
-
-def pytest_configure(config):
-    # read by tests/test_fuzz.py when it is imported (collection comes after this hook)
-    os.environ.setdefault("BOUNCE_FUZZ_EXAMPLES", str(FUZZ_EXAMPLES["all" if config.option.run_all else "default"]))
+                     help="bounce: run every test, the slow ones (integration) included, as CI does")
 
 
 def pytest_collection_modifyitems(config, items):
@@ -62,3 +54,19 @@ def ci_results(tmp_path_factory) -> Path:
             run_ci_pipeline(work)
             done.touch()
     return work / "results"
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A directory on its own 2 MiB tmpfs, to fill the disk for real (needs root, or CAP_SYS_ADMIN: CI runs
+    as root; skipped with the reason where mounting is not permitted)."""
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=2m", "tmpfs", str(disk)], capture_output=True,
+                             text=True)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a small tmpfs here: {mounted.stderr.strip()}")
+    try:
+        yield disk
+    finally:
+        subprocess.run(["umount", "--lazy", str(disk)], check=True)
