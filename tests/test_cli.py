@@ -100,6 +100,16 @@ def test_missing_command(capsys):
     _check_error(code, err, "COMMAND")
 
 
+def test_every_command_is_listed(capsys):
+    """--help and the unknown-command error name both commands (`check` is dispatched before argparse)."""
+    assert main(["--help"]) == 0
+    out = capsys.readouterr().out
+    assert "simulate" in out and "check" in out, out
+    code, _, err = _run(["frobnicate"], capsys)
+    _check_error(code, err, "COMMAND")
+    assert "'check'" in err and "'simulate'" in err, err
+
+
 @pytest.mark.parametrize("where", ["missing_dir", "parent_is_file", "is_directory"])
 def test_bad_output_path(where, tmp_path, capsys):
     (tmp_path / "file").write_text("x")

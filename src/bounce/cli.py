@@ -134,6 +134,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"bounce {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    # listed here for --help and the unknown-command error; main() hands `check ...` to bounce.claims_cli
+    sub.add_parser("check", add_help=False,
+                   help="run one claim of the validation report (or --list them) on the pipeline's datasets; "
+                        "bounce check --help")
     p = sub.add_parser(
         "simulate",
         allow_abbrev=False,
