@@ -94,6 +94,19 @@ def test_thinned_on_the_fly_keeps_the_scene_rule(tmp_path):
     assert ds.attrs["n_events_simulated"] == n
 
 
+@pytest.mark.parametrize("n, keep", [(20000, {"first": 1000, "log_samples": 1000}), (2000, None)])
+def test_short_streamed_file_is_not_a_whole_file_chunk(n, keep, tmp_path):
+    """HDF5 allocates a chunk whole: a stream that writes at most ~2,000 records (thinned, or --events 2000) is
+    chunked by that bound, not by FILE_CHUNK records per variable (65,536 x 8 bytes each: 5.9 MB before)."""
+    params, initial, _ = _case("drop")
+    out = tmp_path / "short.nc"
+    stream.stream_to_netcdf(params, initial, out, n, keep=keep, progress=False)
+    ds = read_dataset(out)
+    records, variables = ds.sizes["event"], len(ds.variables)
+    assert records <= 2001
+    assert out.stat().st_size < 1.5 * records * variables * 8 + 50_000, out.stat().st_size
+
+
 class _Interrupt(Exception):
     pass
 

@@ -183,8 +183,11 @@ def _chunk_trajectory(params, initial, records) -> Trajectory:
                       kind=kind, stop_reason="", t_end=0.0, settings={})
 
 
-def _create(path: Path, params, initial, settings: dict, keep: dict | None, chunk: int, compression: str) -> None:
-    """The file's header: to_dataset's variables and attributes with an unlimited, empty ``event`` dimension."""
+def _create(path: Path, params, initial, settings: dict, keep: dict | None, chunk: int, compression: str,
+            max_records: int) -> None:
+    """The file's header: to_dataset's variables and attributes with an unlimited, empty ``event`` dimension,
+    chunked by ``FILE_CHUNK`` records or fewer: HDF5 allocates a chunk whole, so a run that writes at most
+    ``max_records`` records (``--events``, or what thinning keeps) gets chunks of that size."""
     from .io import CODECS, to_dataset
 
     empty = Trajectory(params=params, initial=initial, t=np.empty(0), tau=np.empty(0), xdot=np.empty(0),
@@ -198,7 +201,7 @@ def _create(path: Path, params, initial, settings: dict, keep: dict | None, chun
         ds.attrs["events_kept"] = "first {first} and {log_samples} log-spaced after them".format(**keep)
     ds.attrs.update(stream_done=0, stream_records=0, stream_carry=np.zeros(CARRY_SIZE),
                     stream_chunk=chunk)
-    size = min(chunk, FILE_CHUNK)
+    size = min(chunk, FILE_CHUNK, max_records)
     encoding = {name: {"_FillValue": None, "chunksizes": (size,), **CODECS[compression]} for name in ds.variables}
     ds.to_netcdf(path, mode="w", format="NETCDF4", engine="netcdf4", encoding=encoding, unlimited_dims=["event"])
 
@@ -219,12 +222,13 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
     out = Path(out)
     part = partial_path(out)
     settings = {"max_events": max_events, "t_max": float(t_max), "energy_stop": float(energy_stop)}
+    kept = kept_indices(max_events, keep)
     if resume:
         if not part.exists():
             raise InputError(f"--resume: no interrupted run to resume ({str(part)!r} does not exist)")
-    else:
-        _create(part, params, initial, settings, keep, chunk, compression)
-    kept = kept_indices(max_events, keep)
+    else:  # records: at most the kept events and the last one, or every event
+        _create(part, params, initial, settings, keep, chunk, compression,
+                max_events if kept is None else min(len(kept) + 1, max_events))
     counts = np.zeros(len(KIND_NAMES), dtype=np.int64)
     with netCDF4.Dataset(part, "a") as nc:
         nc.set_auto_maskandscale(False)
