@@ -160,6 +160,20 @@ def test_cli_refuses_too_many_events_before_simulating(tmp_path, capsys, monkeyp
     assert len(err.strip().splitlines()) == 1 and not list(tmp_path.iterdir())
 
 
+def test_cli_stream_takes_more_events_than_memory_and_checks_the_chunk(tmp_path, capsys, monkeypatch):
+    """--stream: --events is not bounded by memory (a chunk is), up to MAX_STREAM_EVENTS; a --chunk that does
+    not fit is refused up front, with its estimate (the same check, 105 bytes per event of a chunk)."""
+    monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
+            "--xidot0", "0", "--stream", "--no-progress"]
+    assert main([*args, "--events", "1e11", "--t-max", "50", "--out", str(tmp_path / "long.nc")]) == 0
+    assert "stop: t_max" in capsys.readouterr().out
+    code = main([*args, "--events", "1e11", "--chunk", "1e9", "--out", str(tmp_path / "big.nc")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.startswith("error: --chunk 1000000000 needs ~") and "smaller --chunk" in err, err
+    assert len(err.strip().splitlines()) == 1 and sorted(p.name for p in tmp_path.iterdir()) == ["long.nc"]
+
+
 def test_cli_stream_equals_cli_one_shot(tmp_path, capsys):
     args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
             "--xidot0", "0", "--events", "5000"]

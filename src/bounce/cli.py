@@ -32,7 +32,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import math
-import os
 import signal
 import sys
 import threading
@@ -45,10 +44,10 @@ from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (
     FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,
 )
-from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
+from .simulate import MAX_EVENTS, simulate
 from .springs import spring_from_spec
-from .stream import (DEFAULT_CHUNK, check_memory, partial_path, progress_enabled, simulate_chunked,
-                     stream_to_netcdf)
+from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, partial_path,
+                     progress_enabled, simulate_chunked, stream_to_netcdf)
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -93,33 +92,23 @@ def _number(allowed: str, check=lambda v: True, allow_inf: bool = False):
     return parse
 
 
-def _count(text: str) -> int:
-    """argparse type: an integer in [1, MAX_EVENTS] (``1000`` or ``1e6``) whose records fit in memory."""
+def _count(text: str, most: int = MAX_EVENTS) -> int:
+    """argparse type: an integer in [1, most] (``1000`` or ``1e6``).  Whether the records fit in memory is
+    checked once the run is known (:func:`bounce.stream.check_memory`: the whole run without --stream, one
+    chunk with it)."""
     try:
         value = float(text)
-        ok = math.isfinite(value) and value.is_integer() and 1 <= value <= MAX_EVENTS
+        ok = math.isfinite(value) and value.is_integer() and 1 <= value <= most
     except ValueError:
         ok = False
     if not ok:
-        raise argparse.ArgumentTypeError(
-            f"must be an integer (allowed range: [1, {MAX_EVENTS:.0e}]; the records take {BYTES_PER_EVENT} "
-            f"bytes per event), got {text!r}"
-        )
-    memory = _physical_memory()
-    if memory is not None and value * BYTES_PER_EVENT > memory:
-        raise argparse.ArgumentTypeError(
-            f"must be at most {memory // BYTES_PER_EVENT} on this machine (allowed range: [1, "
-            f"{memory // BYTES_PER_EVENT}]; the records take {BYTES_PER_EVENT} bytes per event and "
-            f"{memory / 2**30:.3g} GiB of memory are installed), got {text!r}"
-        )
+        raise argparse.ArgumentTypeError(f"must be an integer (allowed range: [1, {most:.0e}]), got {text!r}")
     return int(value)
 
 
-def _physical_memory() -> int | None:
-    try:
-        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):  # pragma: no cover (not POSIX)
-        return None
+def _event_count(text: str) -> int:
+    """--events: up to MAX_STREAM_EVENTS (a --stream run's memory does not grow with it)."""
+    return _count(text, MAX_STREAM_EVENTS)
 
 
 _ANY = _number("(-inf, inf)")
@@ -172,7 +161,7 @@ def build_parser() -> argparse.ArgumentParser:
     pp.add_argument("--psidot0", type=_ANY)
     pp.add_argument("--xi0", type=_ANY, help="spring deformation")
     pp.add_argument("--xidot0", type=_ANY)
-    p.add_argument("--events", type=_count, default=1000,
+    p.add_argument("--events", type=_event_count, default=1000,
                    help="stop after N events (default 1000)")
     p.add_argument("--t-max", dest="t_max", type=_number("(0, inf]", lambda v: v > 0, allow_inf=True),
                    default=math.inf, help="stop at this time (default inf)")
@@ -296,6 +285,7 @@ def _keep(args) -> dict | None:
 def _stream_command(args, params, initial, out) -> int:
     if args.dt_sample is not None:
         raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
+    check_memory(args.chunk, BYTES_PER_EVENT_STREAM, "--chunk")
     try:
         result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
                                   _keep(args), args.resume, args.progress, args.compression)

@@ -72,10 +72,11 @@ def check_memory(events: int, bytes_per_event: int = BYTES_PER_EVENT, option: st
     need = events * bytes_per_event + BASELINE_BYTES
     have = available_memory()
     if need > have:
+        most = max((have - BASELINE_BYTES) // bytes_per_event, 0)
+        hint = "use --stream (bounded memory)" if option == "--events" else f"use a smaller {option}"
         raise InputError(
             f"{option} {events} needs ~{need / 1e9:.3g} GB of memory ({bytes_per_event} bytes per event), "
-            f"{have / 1e9:.3g} GB available: use --stream (bounded memory) or at most "
-            f"{max((have - BASELINE_BYTES) // bytes_per_event, 0)} events"
+            f"{have / 1e9:.3g} GB available (allowed range here: [1, {most}]): {hint}"
         )
 
 
