@@ -26,16 +26,18 @@ import time
 
 import numpy as np
 
-from bounce import Parameters, State, power_sticky
+from bounce import Parameters, State
 from bounce.exact.flight import FOUND, NEVER
+from bounce.kinds import IMPACT, STOP_EVENTS
+from bounce.series import sticky as power_sticky
 from bounce.series.events import run_power_events
 from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
 from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
-#: crossing the rest length xi = 0 (both of tests/test_power_sticky.py), the onset g0.1_mu1 of
-#: tests/test_power_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
+#: crossing the rest length xi = 0 (both of tests/series/test_series_sticky.py), the onset g0.1_mu1 of
+#: tests/series/test_series_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
 #: detaches after crossing xi = 0), and a phase proved infinite
 STICKY_STARTS = {
     "detach": (0.01, 0.5, -0.0696, -0.2),
@@ -57,13 +59,13 @@ def timed_events(law, start, n, repeats):
         t0 = time.process_time()
         m, stop, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
         times.append(time.process_time() - t0)
-        assert m == n and stop == 0, (m, n, stop)  # stopped by the event count
+        assert m == n and stop == STOP_EVENTS, (m, n, stop)  # stopped by the event count
     return float(np.median(times)), out, kind
 
 
 def rate(rho, a, b, gamma, mu, n, repeats):
     seconds, out, kind = timed_events(law_array(rho, a, b, mu, gamma), (0.0, 1e-7, 0.0, 0.0), n, repeats)
-    assert np.all(kind == 0)  # impacts only
+    assert np.all(kind == IMPACT)  # impacts only
     return n / seconds, out
 
 

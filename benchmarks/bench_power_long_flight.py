@@ -3,7 +3,7 @@
     python benchmarks/bench_power_long_flight.py [--x0 X0] [--points N] [--dps D]
     python benchmarks/bench_power_long_flight.py --realisations N
 
-``--realisations N``: the flight of tests/test_power_reference.py's long-flight test (x0 = 5, mu = 1e-6,
+``--realisations N``: the flight of tests/series/test_series_reference.py's long-flight test (x0 = 5, mu = 1e-6,
 ~45 crossings) for N values gamma = 1e-5 (1 + 0.0137 k), k < N: independent draws of the rounding
 random walk (the spring's motion does not depend on x0, only on gamma through xi_eq), each impact's
 eta against the reference, relative to W = |xi_eq|; printed with their rms and largest value, against

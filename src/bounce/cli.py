@@ -39,12 +39,13 @@ import threading
 import numpy as np
 
 from . import __version__
-from .exact.events import KIND_NAMES
+from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (
     FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,
 )
-from .simulate import MAX_EVENTS, simulate
+from .simulate import simulate
+from .trajectory import MAX_EVENTS
 from .springs import spring_from_spec
 from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, partial_path,
                      progress_enabled, simulate_chunked, stream_to_netcdf)

@@ -62,7 +62,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..analysis.fitting import fit_limit, log_select, transient_length
 from ..model import Deviations, Parameters
 from ..simulate import simulate

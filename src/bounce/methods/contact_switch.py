@@ -37,7 +37,7 @@ and costs nothing afterwards.
 
 Output: ``t``/``xdot`` the impacts (the switching impact included, with its
 true rebound speed); ``y`` the closed-form samples of the stitched records;
-``extra``: the stitched :class:`bounce.simulate.Trajectory` (``trajectory``), the
+``extra``: the stitched :class:`bounce.trajectory.Trajectory` (``trajectory``), the
 switch times and indices, ``energy_removed``, the stop reason and ``n_impacts``.
 """
 
@@ -48,10 +48,12 @@ import time
 
 import numpy as np
 
-from ..exact.events import GRAZING, IMPACT, STICKY_START, energy_excess
+from ..kinds import GRAZING, IMPACT, STICKY_START
+from ..exact.events import energy_excess
 from ..model import Deviations, InputError
 from ..sampling import sample_trajectory
-from ..simulate import Trajectory, simulate
+from ..simulate import simulate
+from ..trajectory import Trajectory
 from .base import MethodResult, MethodSpec
 
 #: first chunk of exact events searched for a slow impact; later chunks are n_done/8 (waste <= ~12 %)

@@ -88,7 +88,8 @@ import time
 import numpy as np
 from numba import njit
 
-from ..exact.events import IMPACT, compensated_add
+from ..kinds import IMPACT
+from ..exact.events import compensated_add
 from ..exact.flight import EPS
 from ..model import InputError
 from ..sampling import sample_trajectory

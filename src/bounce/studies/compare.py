@@ -57,7 +57,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..model import Deviations, Parameters, State
 from ..scenes import scene_initial, scene_parameters
 from ..simulate import simulate

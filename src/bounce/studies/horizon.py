@@ -336,7 +336,7 @@ PRECISIONS = ("float64", "longdouble", "mp_low")
 
 def _float64_run(gamma, mu, start, n):
     from bounce import Parameters, simulate
-    from bounce.exact.events import IMPACT
+    from bounce.kinds import IMPACT
 
     tr = simulate(Parameters(gamma, mu), start, max_events=int(n))
     ok = tr.kind == IMPACT

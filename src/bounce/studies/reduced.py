@@ -46,7 +46,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..model import Deviations, InputError, Parameters
 from ..sampling import sample_trajectory
 from ..simulate import simulate

@@ -17,7 +17,7 @@ A sweep module in ``bounce.sweeps`` defines ``SWEEP = Sweep(...)``:
 
 An item's result depends on nothing but the spec and its index, so the gathered file is
 the same bytes whatever the number of shards, workers or machines (checked in
-tests/test_sweeps.py and tests/test_slurm.py).  The Snakemake rules
+tests/sweeps/test_sweeps.py and tests/pipeline/test_slurm.py).  The Snakemake rules
 (``workflow/rules/sweeps.smk``) run one job per shard and one gather job.
 """
 
@@ -91,7 +91,7 @@ def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, pro
 
     The first batch runs in this process (compiling numba's kernels into its on-disk cache
     once), the others in spawned processes with one BLAS thread each (:data:`WORKER_ENV`);
-    an item's numbers do not depend on which process ran it (tests/test_sweeps.py).  ``progress``: a tqdm bar
+    an item's numbers do not depend on which process ran it (tests/sweeps/test_sweeps.py).  ``progress``: a tqdm bar
     on stderr (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
     """
     from tqdm import tqdm

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..springs.power import PowerSpring
