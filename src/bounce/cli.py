@@ -185,8 +185,10 @@ def build_parser() -> argparse.ArgumentParser:
                      help="with --stream: keep only the first N events and --keep-log log-spaced ones after them")
     run.add_argument("--keep-log", dest="keep_log", type=_count, help="see --keep-first (>= 2)")
     run.add_argument("--compression", choices=sorted(CODECS), default="none",
-                     help="codec of the event records (default none: the fastest; zlib: ~2.2x smaller, "
-                          "~15x slower to write; ncdump reads both; zstd: ~1.3x smaller, ~4x slower, needs the HDF5 zstd filter to read)")
+                     help="codec of the event records (default none: the fastest). Smaller only for long runs, "
+                          "measured on the drop of fig. rigid-fall: zlib 1.7x at 2e5 events, 2.2x at 2e6, but 11%% "
+                          "larger at 1e3; ncdump reads it. zstd 1.2x at 2e5, needs the HDF5 zstd filter to read. "
+                          "Both are slower to write (benchmarks/bench_cli.py --compression)")
     return parser
 
 
