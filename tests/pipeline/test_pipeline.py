@@ -34,14 +34,6 @@ def _snakemake(workdir, *args, check=True):
     return proc
 
 
-@pytest.fixture(scope="session")
-def ci_results(tmp_path_factory):
-    """Run the CI-sized pipeline once; the notebooks' test reuses it."""
-    work = tmp_path_factory.mktemp("pipeline")
-    _snakemake(work, "--configfile", str(ROOT / "config" / "ci.yaml"), "--cores", "2")
-    return work / "results"
-
-
 def _launch_dir(ci_results: Path) -> Path:
     """Where snakemake ran (``--directory``, which takes precedence over the config's ``workdir``)."""
     return ci_results.parent
