@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A one-node SLURM cluster on this machine (Debian's slurm-wlm and munge), for running the pipeline
-# through its SLURM profile (workflow/profiles/slurm) and for tests/test_slurm.py.
+# through its SLURM profile (workflow/profiles/slurm) and for tests/pipeline/test_slurm.py (.ci/run starts it).
 #
 #   sudo workflow/slurm/start-local-slurm.sh     # installs if missing, configures, starts, waits for idle
 #   sudo workflow/slurm/stop-local-slurm.sh      # cancels every job, waits for them to end, stops the daemons
