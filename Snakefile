@@ -50,6 +50,10 @@ if workflow.is_main_process or "BOUNCE_WORKDIR" not in os.environ:
     os.environ["BOUNCE_WORKDIR"] = str(_run_dir)
 
 
+envvars:
+    "BOUNCE_WORKDIR",  # passed to the jobs (also by executors that do not share the environment)
+
+
 workdir: os.environ["BOUNCE_WORKDIR"]
 
 
