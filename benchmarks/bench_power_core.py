@@ -29,7 +29,7 @@ import numpy as np
 from bounce import Parameters, State
 from bounce.exact.flight import FOUND, NEVER
 from bounce.kinds import IMPACT, STOP_EVENTS
-from bounce.series import sticky as power_sticky
+from bounce.series import sticky as series_sticky
 from bounce.series.events import run_power_events
 from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
@@ -74,15 +74,15 @@ def sticky_costs(gamma, mu, xi, v, calls, repeats):
     law = law_array(1.0, 0.5, 0.5, mu, gamma)
     eta = xi - float(law[L_XI_EQ])
     work = [np.empty(DEGREE_LONG + 2) for _ in range(3)]
-    status, duration, _, _ = power_sticky.sticky_phase(v, eta, np.inf, law, *work, False)  # compile
+    status, duration, _, _ = series_sticky.sticky_phase(v, eta, np.inf, law, *work, False)  # compile
     times = []
     for _ in range(repeats):
         t0 = time.process_time()
         for _ in range(calls):
-            power_sticky.sticky_phase(v, eta, np.inf, law, *work, False)
+            series_sticky.sticky_phase(v, eta, np.inf, law, *work, False)
         times.append((time.process_time() - t0) / calls)
-    with counting(power_sticky, ("taylor_coefficients", "tail_bounds")) as counts:
-        again = power_sticky.sticky_phase.py_func(v, eta, np.inf, law, *work, False)
+    with counting(series_sticky, ("taylor_coefficients", "tail_bounds")) as counts:
+        again = series_sticky.sticky_phase.py_func(v, eta, np.inf, law, *work, False)
     assert again[:2] == (status, duration), (again, status, duration)
     return float(np.median(times)), counts["taylor_coefficients"], counts["tail_bounds"], status, duration
 

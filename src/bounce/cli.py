@@ -38,7 +38,7 @@ import threading
 
 import numpy as np
 
-from . import __version__
+from ._version import __version__
 from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (

@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
+from ._version import __version__
 from .kinds import KIND_NAMES
 from .model import Deviations, Parameters, State
 from .sampling import sample_trajectory

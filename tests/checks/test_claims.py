@@ -326,7 +326,7 @@ def test_one_claim_with_an_experiment_and_a_sweep_runs_alone(tmp_path, capsys):
 
 def test_restart_reproduces_thinned_events():
     """dataset_series on a thinned dataset gives the same tau_n, Xdot_(n+1) as the full simulation."""
-    from bounce.checks.main_theorem import dataset_series
+    from bounce.analysis.observables import dataset_series
 
     full = scene_dataset(dict(UD, keep=None))
     s_thin = dataset_series(scenes()["ud"])

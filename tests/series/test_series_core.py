@@ -279,7 +279,7 @@ def test_energy_never_rises_and_no_collapse(spring):
 def test_rest_at_equilibrium_is_a_sticky_onset_for_ever(spring):
     """At rest on the floor at the static equilibrium (eq. nonlin-equilibrium-xi) the floor force is
     -2 gamma < 0: a sticky state, and the sticky energy is at its minimum, so the phase is proved
-    infinite at once (power_sticky.never_detaches): one sticky_start record, stop sticky_forever."""
+    infinite at once (series.sticky.never_detaches): one sticky_start record, stop sticky_forever."""
     tr = simulate_power(Parameters(0.02, 0.1), spring, Deviations(x=0.0, xdot=0.0, xidot=0.0, eta=0.0),
                         max_events=5)
     assert tr.stop_reason == "sticky_forever"
@@ -307,8 +307,8 @@ def test_long_flight_of_a_weakly_damped_spring_is_not_capped(mu):
     impact with psi a free fall to rounding, gamma tau^2/2 = psi(0) - xi(tau), and, for mu = 0, the
     spring energy xi'^2/2 + |xi|^(5/2)/(5/2) of the flight conserved.  From the recorded events
     xi'(tau-) = psi' - x' cancels (~0.6 each, ulp ~1e-16 against xi' ~6e-5: up to ~7e-12 of the
-    energy); from the flight's own xi'(tau) (power_flight.first_contact) the energy is conserved to
-    its random walk of roundings, ~8e-17 per crossing (power_flight docstring): measured 8e-15
+    energy); from the flight's own xi'(tau) (series.flight.first_contact) the energy is conserved to
+    its random walk of roundings, ~8e-17 per crossing (series.flight docstring): measured 8e-15
     (4.4e-14 before the compensation of eta, xi' was folded into the state each step starts from)."""
     gamma, x0 = 1e-5, 2e4
     xi_eq = HERTZ.xi_eq(gamma)

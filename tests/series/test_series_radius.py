@@ -1,4 +1,4 @@
-"""The series' radius (power_series.series_radius and step_radius, its one-shot form for the general
+"""The series' radius (series.taylor.series_radius and step_radius, its one-shot form for the general
 steps of a flight): the comparison equation (C) gives a radius that the Taylor coefficients respect
 (Cauchy's estimate |X_k| <= Rz / r^k, |(k+1) X_{k+1}| <= Rp / r^k), never below the first majorant
 radius, ~2x it at a turning point of the Hertz spring; e(s) of (C) is an upper bound of its closed

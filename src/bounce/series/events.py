@@ -120,7 +120,7 @@ def run_power_events(
                     stop = STOP_TIME if status == HORIZON else STOP_FAILED
                     break
             if status == AT_REST:
-                # after a tangential detach the mass stays (power_sticky docstring): a sticky start
+                # after a tangential detach the mass stays (series.sticky docstring): a sticky start
                 kind, tau = STICKY_START, 0.0
             else:
                 x0 = 0.0
