@@ -1,8 +1,9 @@
 """Stage 3: every figure, from netCDF only -> results/figures/fig-<paper label or name>.{png,pdf}."""
 
 
-# figure name -> the label of the paper's figure it reproduces ("": beyond the paper) and its caption (bounce.figures)
-FIGURE_CAPTIONS = {f["name"]: f for f in PIPELINE_FIGURES if f["path"] == f"results/figures/fig-{f['name']}.png"}
+# figure name -> the label of the paper's figure it reproduces ("": beyond the paper) and its caption
+# (bounce.pipeline.catalogue)
+FIGURE_CAPTIONS = {f["name"]: f for f in PIPELINE_FIGURES if f["path"] == figure_file("figures", f["name"])}
 
 
 rule figure:
