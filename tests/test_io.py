@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import math
 import re
+import signal
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -285,3 +289,35 @@ def test_thinned_dataset(tmp_path):
     anonymous = ds.drop_vars("event").isel(event=keep)
     with pytest.raises(bio.DatasetError, match="no 'event' coordinate"):
         bio.sample_dataset(anonymous, times)
+
+
+_WRITER = """
+import sys
+import numpy as np, xarray as xr
+from bounce.io import write_netcdf
+data = np.random.default_rng(0).random(int(sys.argv[2]))
+write_netcdf(xr.Dataset({f"v{k}": ("n", data) for k in range(4)}), sys.argv[1])
+"""
+
+
+@pytest.mark.slow
+def test_sigterm_with_its_default_action_removes_the_temporary(tmp_path):
+    """Issue 25 item 1 in a library caller whose SIGTERM keeps its default action (a pipeline job
+    cancelled by its scheduler): the process ends by SIGTERM once the temporary file is closed, and the
+    temporary is removed first.  Before, it died inside the write, leaving the temporary."""
+    target = tmp_path / "big.nc"
+    proc = subprocess.Popen([sys.executable, "-c", _WRITER, str(target), str(2_000_000)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not list(tmp_path.iterdir()):
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.02)
+    time.sleep(0.2)
+    assert proc.poll() is None
+    proc.send_signal(signal.SIGTERM)
+    try:
+        _, stderr = proc.communicate(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode == -signal.SIGTERM, stderr
+    assert list(tmp_path.iterdir()) == []

@@ -20,17 +20,17 @@ PACKAGE = Path(__file__).resolve().parents[1] / "src" / "bounce"
 #: layer of each top-level module or folder of bounce, from the bottom (the flow: model -> solvers -> front
 #: -> shared analysis -> methods and figure helpers -> wings -> pipeline -> command line)
 LAYERS = {
-    "errors": 0, "kinds": 0, "paths": 0, "_registry": 0, "_jit_cache": 0, "_version": 0,
+    "errors": 0, "kinds": 0, "paths": 0, "_registry": 0, "_jit_cache": 0, "_version": 0, "_interrupted": 0,
     "springs": 1, "model": 1,
     "trajectory": 2,
     "exact": 3, "series": 3,
     "simulate": 4, "sampling": 4,
-    "io": 5, "stream": 5, "scenes": 5,
+    "io": 5, "stream": 5, "scenes": 5, "gas": 5,
     "analysis": 6,
     "methods": 7, "figures": 7,
     "studies": 8, "sweeps": 8, "checks": 8,
     "pipeline": 9,
-    "claims_cli": 10, "cli": 10, "__main__": 10, "__init__": 10,
+    "claims_cli": 10, "cli": 10, "gas_cli": 10, "__main__": 10, "__init__": 10,
 }
 PLUGIN_FOLDERS = ("checks", "sweeps", "studies", "methods")
 

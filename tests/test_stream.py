@@ -3,7 +3,13 @@ and the memory refusal of the CLI."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import signal
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -228,9 +234,188 @@ def test_cli_interrupted_stream_resumes(tmp_path, capsys, monkeypatch):
     out = tmp_path / "i.nc"
     assert main([*args, "--out", str(out)]) == 130
     err = capsys.readouterr().err
-    assert err.startswith("error: interrupted;") and "--resume" in err and len(err.strip().splitlines()) == 1
+    assert err.startswith("error: interrupted (SIGINT);") and "--resume" in err and len(err.strip().splitlines()) == 1
     assert not out.exists() and stream.partial_path(out).exists()
     monkeypatch.setattr(stream, "run_events", real)
     assert main([*args, "--out", str(out), "--resume"]) == 0
     one = simulate(Parameters(0.01, 0.01), State.from_psi_xi(6.0, 0.0, 0.0, 0.0), max_events=5000)
     _assert_same(read_trajectory(out), one)
+
+
+# --------------------------------------------------------------------------- the partial file (issue 25)
+
+DROP = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"]
+
+
+def _cli(argv, capsys):
+    code = main(argv)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _one_line_error(err, *words):
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and "Traceback" not in err, err
+    assert all(w in lines[0] for w in words), err
+
+
+def _interrupted_partial(tmp_path, capsys, monkeypatch, at_call, extra=()):
+    """``tmp_path/run.nc.partial`` of the drop (5000 events, chunks of 1000) interrupted at its
+    ``at_call``-th chunk (1: only the header written); returns the out path and the partial's bytes."""
+    real = stream.run_events
+    calls = {"n": 0}
+
+    def interrupted(*a):
+        calls["n"] += 1
+        if calls["n"] == at_call:
+            raise KeyboardInterrupt
+        return real(*a)
+
+    monkeypatch.setattr(stream, "run_events", interrupted)
+    out = tmp_path / "run.nc"
+    code, _, err = _cli([*DROP, "--events", "5000", "--stream", "--chunk", "1000", *extra, "--out", str(out)], capsys)
+    monkeypatch.setattr(stream, "run_events", real)
+    assert code == 130 and "--resume" in err
+    part = stream.partial_path(out)
+    return out, part.read_bytes()
+
+
+@pytest.mark.parametrize("kind", ["symlink_to_file", "dangling_symlink"])
+def test_partial_that_is_a_link_is_refused(kind, tmp_path, capsys):
+    """Issue 25 item 3: --out is refused when it is a symbolic link; so is its partial file, which used to be
+    followed (the link's target overwritten) or, dangling, to create a file where it pointed."""
+    target = tmp_path / "elsewhere.nc"
+    if kind == "symlink_to_file":
+        target.write_bytes(b"keep")
+    stream.partial_path(tmp_path / "run.nc").symlink_to(target)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    code, out, err = _cli([*DROP, "--events", "3000", "--stream", "--out", str(tmp_path / "run.nc")], capsys)
+    assert code == 2 and out == ""
+    _one_line_error(err, "--out", "symbolic link", "run.nc.partial")
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+    assert stream.partial_path(tmp_path / "run.nc").is_symlink()
+    assert target.read_bytes() == b"keep" if kind == "symlink_to_file" else not target.exists()
+
+
+def test_partial_that_is_a_fifo_is_refused(tmp_path):
+    """Issue 25 item 3: a FIFO at the partial file's name is refused at once (the run used to hang on it once
+    the pipe's buffer was full); in a real process, so that a hang fails the test instead of holding it."""
+    part = stream.partial_path(tmp_path / "run.nc")
+    os.mkfifo(part)
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    try:
+        done = subprocess.run([sys.executable, "-m", "bounce", *DROP, "--events", "3000", "--stream",
+                               "--out", str(tmp_path / "run.nc")], capture_output=True, text=True, env=env, timeout=60)
+    finally:
+        os.unlink(part)  # a hung writer blocks in open() no more once the FIFO is gone
+    assert done.returncode == 2 and done.stdout == ""
+    _one_line_error(done.stderr, "--out", "FIFO", "run.nc.partial")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_partial_hard_link_keeps_its_other_name(tmp_path, capsys):
+    """Issue 25 item 3: a new run replaces an existing partial file (an atomic header); it used to write into
+    it, through every other name of the same file.  Resuming a partial file with another name is refused:
+    appending would change both."""
+    other = tmp_path / "other.nc"
+    other.write_bytes(b"keep")
+    os.link(other, stream.partial_path(tmp_path / "run.nc"))
+    code, _, err = _cli([*DROP, "--events", "3000", "--stream", "--chunk", "1000", "--out", str(tmp_path / "run.nc"),
+                         "--resume"], capsys)
+    assert code == 2
+    _one_line_error(err, "--resume", "hard links")
+    assert other.read_bytes() == b"keep"
+    assert _cli([*DROP, "--events", "3000", "--stream", "--out", str(tmp_path / "run.nc")], capsys)[0] == 0
+    assert other.read_bytes() == b"keep"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.nc", "run.nc"]
+    assert read_dataset(tmp_path / "run.nc").sizes["event"] == 3000
+
+
+@pytest.mark.parametrize("at_call", [1, 3], ids=["header-only", "two-chunks"])
+@pytest.mark.parametrize("change, named", [
+    (["--psi0", "7"], "x0"),
+    (["--mu", "0.02"], "mu"),
+    (["--events", "6000"], "max_events"),
+    (["--compression", "zlib"], "compression"),
+    (["--keep-first", "100", "--keep-log", "50"], "events_kept"),
+])
+def test_resume_refuses_another_run(change, named, at_call, tmp_path, capsys, monkeypatch):
+    """Issue 25 item 7: --resume checks every parameter, the initial state, the stop rules, the thinning and
+    the codec against the partial file and names what differs; the partial file is left as it was.  A
+    changed state or codec used to be resumed silently: the records of one run under the attributes of the
+    other (header only), or the old run under the new command (two chunks)."""
+    out, before = _interrupted_partial(tmp_path, capsys, monkeypatch, at_call)
+    argv = dict(zip(DROP[1::2], DROP[2::2]))
+    argv.update({"--events": "5000", **dict(zip(change[::2], change[1::2]))})
+    code, stdout, err = _cli(["simulate", *[x for kv in argv.items() for x in kv], "--stream", "--chunk", "1000",
+                              "--resume", "--out", str(out)], capsys)
+    assert code == 2 and stdout == ""
+    _one_line_error(err, "--resume", "different run", named)
+    assert stream.partial_path(out).read_bytes() == before and not out.exists()
+
+
+def test_resume_of_a_damaged_partial_is_refused(tmp_path, capsys, monkeypatch):
+    """Issue 25 item 10: a truncated partial file gives one line saying so (it gave "NetCDF: HDF error")."""
+    out, before = _interrupted_partial(tmp_path, capsys, monkeypatch, 3)
+    part = stream.partial_path(out)
+    part.write_bytes(before[: len(before) // 2])
+    code, _, err = _cli([*DROP, "--events", "5000", "--stream", "--chunk", "1000", "--resume", "--out", str(out)],
+                        capsys)
+    assert code == 2
+    _one_line_error(err, "--resume", "truncated or damaged", "without --resume")
+    assert part.read_bytes() == before[: len(before) // 2] and not out.exists()
+
+
+def test_full_disk_removes_the_partial(small_disk, capsys):
+    """Issue 25 item 2: a stream filling a 2 MiB file system says the disk is full and removes the partial
+    file (it said "NetCDF: HDF error" and left the partial file filling the disk)."""
+    code, out, err = _cli([*DROP, "--events", "1e5", "--stream", "--chunk", "10000",
+                           "--out", str(small_disk / "run.nc")], capsys)
+    assert code == 1 and out == ""
+    _one_line_error(err, "disk full", "partial file was removed", "no file was written")
+    assert list(small_disk.iterdir()) == []
+
+
+def test_stream_on_a_full_disk(small_disk, capsys):
+    """Issue 25 item 2: with no space left at all it said "Permission denied" (or "NetCDF: HDF error")."""
+    with open(small_disk / "fill", "wb", buffering=0) as fh, contextlib.suppress(OSError):
+        while True:
+            fh.write(b"\0" * 4096)
+    code, out, err = _cli([*DROP, "--events", "1000", "--stream", "--out", str(small_disk / "run.nc")], capsys)
+    assert code == 1 and out == ""
+    _one_line_error(err, "disk full", "no file was written")
+    assert [p.name for p in small_disk.iterdir()] == ["fill"]
+
+
+_STREAM_RUN = [sys.executable, "-m", "bounce", *DROP, "--events", "1e6", "--stream", "--chunk", "100000"]
+
+
+@pytest.mark.slow
+def test_second_stream_to_the_same_out_is_refused(tmp_path):
+    """Issue 25 item 8: while a --stream run writes FILE.nc.partial (stopped by SIGSTOP meanwhile, so that it
+    is still there), a second run to the same --out, or a --resume of it, is refused with one line naming the
+    first's pid; the first, continued, completes its file.  Both used to fail and leave a damaged partial file
+    (the second truncated it under the first)."""
+    out = tmp_path / "run.nc"
+    env = {**os.environ, "PYTHONWARNINGS": "ignore"}
+    first = subprocess.Popen([*_STREAM_RUN, "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=env)
+    try:
+        deadline = time.monotonic() + 120
+        while not stream.partial_path(out).exists():
+            assert first.poll() is None and time.monotonic() < deadline, first.communicate()
+            time.sleep(0.01)
+        first.send_signal(signal.SIGSTOP)
+        for extra in ([], ["--resume"]):
+            second = subprocess.run([*_STREAM_RUN, "--out", str(out), *extra], capture_output=True, text=True,
+                                    env=env, timeout=120)
+            assert second.returncode == 2 and second.stdout == ""
+            _one_line_error(second.stderr, "--out", "another bounce --stream run", f"pid {first.pid}")
+        first.send_signal(signal.SIGCONT)
+        stdout, stderr = first.communicate(timeout=300)
+    finally:
+        first.kill()
+    assert first.returncode == 0, stderr
+    assert "1000000 events" in stdout
+    assert read_dataset(out).sizes["event"] == 1_000_000
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]

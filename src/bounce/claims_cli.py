@@ -7,12 +7,12 @@ defaults applied (as the pipeline does), and its input datasets are read from ``
 (default ``results/data``; a sweep's gathered file from ``results/sweeps``, the group's experiments from
 ``results/data/checks/<group>/``): run the pipeline (or ``snakemake results/data/<scene>.nc``) first.
 Prints one line per verdict row; exit status 0 if no row is ``not reproduced`` unexpectedly
-(a claim with a ``known_failure`` is expected to be not reproduced), 1 otherwise, 2 on bad input.
+(a claim with a ``known_failure`` is expected to be not reproduced), 1 otherwise, 2 on bad input
+(one line, as ``python -m bounce simulate``: bad arguments raise :class:`bounce.errors.UsageError`).
 """
 
 from __future__ import annotations
 
-import argparse
 import copy
 import sys
 from pathlib import Path
@@ -67,9 +67,10 @@ def load_config(paths: list[str], schema_path: str) -> dict:
 
 def main(argv=None) -> int:
     from .checks import input_files, registry
+    from .errors import OneLineParser
     from .io import read_dataset
 
-    parser = argparse.ArgumentParser(prog="python -m bounce check", description=__doc__.splitlines()[0])
+    parser = OneLineParser(prog="python -m bounce check", description=__doc__.splitlines()[0])
     parser.add_argument("claim", nargs="?", help="group/claim id, or a group name")
     parser.add_argument("--list", action="store_true", help="list every claim id with its kind and subject")
     parser.add_argument("--config", nargs="+", default=["config/config.yaml"], help="config file(s), later ones overlay")

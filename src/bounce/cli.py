@@ -10,11 +10,16 @@ velocities ``--x0 --xdot0 --y0 --ydot0``, or the paper's centre-of-mass and
 spring variables ``--psi0 --psidot0 --xi0 --xidot0`` (eq. ``xi-psi``).
 
 Bad input exits with status 2 and one line ``error: ...`` on stderr naming the
-parameter and its allowed range (also for an option given twice); a failure
-while simulating or writing exits with status 1 (a full disk says so, and the
-old file is kept); SIGINT and SIGTERM exit with 130 and 143 after one line.
-No file is left behind on failure, not even a temporary one (a temporary left
-by SIGKILL is removed by the next run writing the same file).
+parameter and its allowed range (also for an option given twice); every name the
+run will write (--out, its temporary file, a stream's partial file) and the
+sampling step are checked before the run is simulated (or, for --dt-sample, as
+soon as the run passes its sampling limit).  A failure while simulating or
+writing exits with status 1 (a full disk says so, and the old file is kept);
+SIGINT and SIGTERM exit with 130 and 143 after one line (during a write, once
+its temporary file is closed: :func:`bounce.io.signals_deferred`).  No file is
+left behind on failure, not even a temporary one (a temporary left by SIGKILL is
+removed by the next run writing the same file); an interrupted --stream run
+keeps its partial file up to its last chunk, for --resume.
 
 Supported inputs (refused up front otherwise, see
 :func:`bounce.model.check_supported`): gamma in [1e-12, 0.5), mu in [0, 1e8],
@@ -31,6 +36,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import math
 import signal
 import sys
@@ -39,6 +45,7 @@ import threading
 import numpy as np
 
 from ._version import __version__
+from .errors import OneLineParser, UsageError
 from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, to_dataset, write_netcdf
 from .model import (
@@ -47,8 +54,8 @@ from .model import (
 from .simulate import simulate
 from .trajectory import MAX_EVENTS
 from .springs import spring_from_spec
-from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, partial_path,
-                     progress_enabled, simulate_chunked, stream_to_netcdf)
+from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, check_paths,
+                     partial_path, progress_enabled, simulate_chunked, stream_to_netcdf)
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -58,23 +65,12 @@ XY_FORM = ("x0", "xdot0", "y0", "ydot0")
 PSI_FORM = ("psi0", "psidot0", "xi0", "xidot0")
 
 
-class UsageError(Exception):
-    """Bad command-line input; the message is the one line printed after 'error: '."""
-
-
 class Terminated(Exception):
     """SIGTERM, raised by the handler so that cleanup (temporary files) runs as for KeyboardInterrupt."""
 
 
 def _raise_terminated(signum, frame):
     raise Terminated()
-
-
-class _Parser(argparse.ArgumentParser):
-    """An ArgumentParser that raises instead of printing usage and exiting."""
-
-    def error(self, message):
-        raise UsageError(message)
 
 
 # --------------------------------------------------------------------------- argument types
@@ -116,7 +112,7 @@ _ANY = _number("(-inf, inf)")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = OneLineParser(
         prog="bounce",
         allow_abbrev=False,
         description="Exact event-driven simulation of the two-mass bouncing ball "
@@ -248,6 +244,24 @@ def _n_samples(end: float, dt: float) -> int:
     return math.floor(ratio) + 1
 
 
+def _simulate_sampled(run, t_max: float, dt: float):
+    """``run(t_max)`` stopped where the samples of step ``dt`` would exceed MAX_SAMPLES (the sampled span is the
+    whole run, unknown before simulating it): a run going on beyond ``MAX_SAMPLES dt`` is refused there, not
+    after simulating all of it.  A finite t_max changes no record before it (the event loop's stop rule), so
+    a run ending before that limit is the run of ``t_max``, settings included."""
+    limit = MAX_SAMPLES * dt
+    if not limit < t_max:
+        return run(t_max)
+    traj = run(limit)
+    if traj.stop_reason == "t_max":
+        raise UsageError(
+            f"--dt-sample must leave at most {MAX_SAMPLES} samples over the run (allowed range: [(end of the run)/"
+            f"{MAX_SAMPLES - 1}, inf)), got {dt!r}: the run goes on beyond t = {limit:.6g}; bound it with --t-max "
+            "or take a larger step"
+        )
+    return dataclasses.replace(traj, settings={**traj.settings, "t_max": t_max})
+
+
 def _sample_end(traj, t_max: float) -> float:
     """End of the sampled span: t_valid; t_max if the motion is determined forever (sticky_forever),
     or the last event if t_max is infinite too."""
@@ -265,12 +279,14 @@ def _sample_times(traj, t_max: float, dt: float) -> np.ndarray:
 
 
 def _summary(n_events: int, counts, stop_reason: str, t_end: float, path, n_samples=None) -> str:
-    """One line; ``counts`` per kind (np.bincount of the kinds: no loop over events)."""
+    """One line; ``counts`` per kind (np.bincount of the kinds: no loop over events).  A path holding a
+    newline or another unprintable character is quoted with escapes (it would split the line)."""
     parts = ", ".join(f"{c} {k}" for k, c in zip(KIND_NAMES, counts) if c)
     text = f"bounce: {n_events} events ({parts or 'none'}), stop: {stop_reason}, t_end = {t_end:.10g}"
     if n_samples is not None:
         text += f", {n_samples} samples"
-    return text + f"; wrote {path}"
+    name = str(path)
+    return text + f"; wrote {name if name.isprintable() else repr(name)}"
 
 
 def _keep(args) -> dict | None:
@@ -292,10 +308,13 @@ def _stream_command(args, params, initial, out) -> int:
     try:
         result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
                                   _keep(args), args.resume, args.progress, args.compression)
-    except KeyboardInterrupt:
-        print(f"error: interrupted; {partial_path(out)} keeps the run up to its last chunk: "
-              "continue it with the same command and --resume", file=sys.stderr)
-        return EXIT_SIGINT
+    except (KeyboardInterrupt, Terminated) as exc:
+        signame, status = ("SIGINT", EXIT_SIGINT) if isinstance(exc, KeyboardInterrupt) else ("SIGTERM", EXIT_SIGTERM)
+        part = partial_path(out)
+        left = (f"{part} keeps the run up to its last chunk: continue it with the same command and --resume"
+                if part.exists() else "no partial file is left")
+        print(f"error: interrupted ({signame}); {left}", file=sys.stderr)
+        return status
     counts = [result["counts"][k] for k in KIND_NAMES]
     print(_summary(result["events"], counts, result["stop_reason"], result["t_end"], out)
           + f" ({result['records']} records)")
@@ -306,33 +325,35 @@ def _simulate_command(args) -> int:
     params = Parameters(args.gamma, args.mu, _spring(args))
     initial = _initial_state(args)
     check_supported(params, initial.deviations(params))
-    try:
-        out = check_output_path(args.out)
+    streamed = args.stream or args.resume
+    try:  # every name the run writes, before simulating: the partial file of a stream is checked as --out is
+        out = check_paths(args.out)[0] if streamed else check_output_path(args.out)
     except OSError as exc:
         raise UsageError(
             f"--out must be a new file or a regular file in an existing, writable directory: {exc}"
         ) from None
-    chunked = args.stream or args.resume or progress_enabled(args.progress)
+    chunked = streamed or progress_enabled(args.progress)
     if chunked and params.spring.name != "linear":
         raise UsageError("--stream, --resume and --progress run the linear spring's event loop in chunks; "
                          f"the {params.spring.name} spring runs in one call (drop them)")
-    if args.stream or args.resume:
+    if streamed:
         if args.resume and not args.stream:
             raise UsageError("--resume continues a --stream run; add --stream")
         return _stream_command(args, params, initial, out)
     _keep(args)
     check_memory(args.events)  # refuse up front what would meet the OOM killer
     with _signals_end_the_process():
-        if args.dt_sample is not None:
-            # fail before simulating: the sampled span is [0, t_max], or at least [0, first event]
-            first = simulate(params, initial, max_events=1, t_max=args.t_max, energy_stop=args.energy_stop)
-            _n_samples(args.t_max if math.isfinite(args.t_max) else _sample_end(first, args.t_max), args.dt_sample)
-        stop = {"max_events": args.events, "t_max": args.t_max, "energy_stop": args.energy_stop}
-        if progress_enabled(args.progress):  # in chunks, to draw the bar (the same bits as one call)
-            traj = simulate_chunked(params, initial, chunk=args.chunk, progress=True, **stop)
+        def run(t_max):
+            stop = {"max_events": args.events, "t_max": t_max, "energy_stop": args.energy_stop}
+            if progress_enabled(args.progress):  # in chunks, to draw the bar (the same bits as one call)
+                return simulate_chunked(params, initial, chunk=args.chunk, progress=True, **stop)
+            return simulate(params, initial, **stop)
+
+        if args.dt_sample is None:
+            traj, times = run(args.t_max), None
         else:
-            traj = simulate(params, initial, **stop)
-        times = None if args.dt_sample is None else _sample_times(traj, args.t_max, args.dt_sample)
+            traj = _simulate_sampled(run, args.t_max, args.dt_sample)
+            times = _sample_times(traj, args.t_max, args.dt_sample)
         dataset = to_dataset(traj, times)
     write_netcdf(dataset, out, compression=args.compression)
     counts = np.bincount(traj.kind, minlength=len(KIND_NAMES))
@@ -417,6 +438,10 @@ def main(argv=None) -> int:
             return check_main(argv[1:])
         argv = _join_negative_numbers(argv)
         _reject_repeated_options(argv)
+        if argv[:1] == ["gas"]:  # a gas of grains (bounce.gas_cli)
+            from .gas_cli import main as gas_main
+
+            return gas_main(argv[1:])
         args = build_parser().parse_args(argv)
         if args.command == "simulate":
             return _simulate_command(args)

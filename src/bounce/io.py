@@ -28,8 +28,10 @@ import errno
 import functools
 import os
 import re
+import signal
 import stat
 import subprocess
+import threading
 import uuid
 from pathlib import Path
 
@@ -49,12 +51,15 @@ __all__ = [
     "SAMPLED_VARIABLES",
     "check_output_path",
     "complete_prefix",
+    "disk_full_error",
     "from_dataset",
     "git_info",
+    "is_disk_full",
     "read_dataset",
     "read_trajectory",
     "remove_stale_temporaries",
     "sample_dataset",
+    "signals_deferred",
     "to_dataset",
     "write_netcdf",
 ]
@@ -393,7 +398,7 @@ def _probe_writable(directory: Path) -> None:
     os.unlink(probe)
 
 
-def check_output_path(path) -> Path:
+def check_output_path(path, suffix: str = "") -> Path:
     """Check that a file can be written at ``path``; return it as a Path.
 
     Only two kinds of target are accepted: a new name in an existing, writable
@@ -403,13 +408,18 @@ def check_output_path(path) -> Path:
     as, a directory: ``dir/``, ``dir/.``), FileExistsError (``path`` is a
     symbolic link, dangling or not, a FIFO, a device or a socket: replacing it
     by a regular file would destroy it, and a link would be replaced rather than
-    its target) or PermissionError (the directory is not writable), each with a
-    message naming the path.
+    its target), PermissionError (the directory is not writable) or OSError
+    (the name, with ``suffix`` appended as a caller may do, e.g. a stream's
+    ``.partial``, leaves no room for the temporary file's longer name within the
+    file system's limit), each with a message naming the path.
     """
     text = os.fspath(path)
     path = Path(text)
     tail = os.path.basename(text.rstrip("/")) if text.endswith("/") else os.path.basename(text)
-    if text.endswith("/") or tail in ("", ".", "..") or path.is_dir():
+    spelled_as_directory = text.endswith("/") or tail in ("", ".", "..")
+    if not spelled_as_directory:
+        _check_name_length(path, suffix)
+    if spelled_as_directory or path.is_dir():
         raise IsADirectoryError(f"output path {text!r} is a directory, not a file")
     parent = path.parent
     if not parent.exists():
@@ -434,8 +444,36 @@ def check_output_path(path) -> Path:
     return path
 
 
+def _check_name_length(path: Path, suffix: str) -> None:
+    """The longest name written for ``path`` (its temporary file, after ``suffix``) fits the file system."""
+    try:
+        name_max = os.pathconf(path.parent, "PC_NAME_MAX")
+        path_max = os.pathconf(path.parent, "PC_PATH_MAX")
+    except (OSError, ValueError):  # the directory is missing (refused next), or the file system does not say
+        name_max, path_max = 255, 4096
+    longest = _tmp_path(Path(f"{path}{suffix}"))
+    size = len(os.fsencode(path.name))
+    extra = len(os.fsencode(longest.name)) - size
+    if size + extra > name_max:
+        raise OSError(
+            f"output name {path.name!r} is {size} bytes long: at most {name_max - extra} bytes fit (allowed range: "
+            f"[1, {name_max - extra}] bytes; the file system allows {name_max} per name and the temporary file "
+            f"written next to it adds {extra})"
+        )
+    if len(os.fsencode(str(longest))) >= path_max:
+        raise OSError(
+            f"output path {str(path)!r} is too long: with its temporary file's name it exceeds the file system's "
+            f"limit of {path_max - 1} bytes per path (allowed range: [1, {path_max - 1}] bytes)"
+        )
+
+
 #: temporary files are ``.NAME.<pid>.<12 hex>.bounce-tmp`` next to the target
 _TMP_SUFFIX = ".bounce-tmp"
+
+
+def _tmp_path(path: Path) -> Path:
+    """A fresh temporary file name for ``path``: ``.NAME.<pid>.<12 hex>.bounce-tmp`` in its directory."""
+    return path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{_TMP_SUFFIX}"
 
 
 def _tmp_pattern(path: Path) -> re.Pattern:
@@ -473,9 +511,10 @@ def _free_bytes(directory: Path) -> int:
     return st.f_bavail * st.f_frsize
 
 
-def _disk_full(directory: Path, exc: BaseException) -> bool:
+def is_disk_full(directory: Path, exc: BaseException) -> bool:
     """Was the failure a full disk?  ENOSPC/EDQUOT, or a library error (netCDF reports the bare
-    "NetCDF: HDF error") while the file system has (almost) no space left."""
+    "NetCDF: HDF error") while the file system has (almost) no space left.  Asked while the failed
+    file still takes its space (once it is removed, the space is free again)."""
     if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT):
         return True
     if not isinstance(exc, (OSError, RuntimeError)):
@@ -486,9 +525,53 @@ def _disk_full(directory: Path, exc: BaseException) -> bool:
         return False
 
 
-def _encoding(ds: xr.Dataset, compression: str = "zlib") -> dict:
+def disk_full_error(path: Path, kept: str) -> OSError:
+    """The error of a write to ``path`` that failed on a full disk; ``kept`` says what is left."""
+    return OSError(errno.ENOSPC, f"No space left on device (disk full) in {str(path.parent)!r} while writing "
+                                 f"{str(path)!r}; {kept}")
+
+
+#: the signals a write defers (:func:`signals_deferred`)
+DEFERRED_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+@contextlib.contextmanager
+def signals_deferred(cleanup=lambda: None):
+    """SIGINT and SIGTERM arriving inside the block are recorded and act when it ends.
+
+    xarray writes through netCDF4 holding a non-reentrant lock; the interpreter runs a signal's
+    handler when the write's C call returns, in the lock's ``__exit__`` before it releases the lock,
+    and the handler's exception (KeyboardInterrupt, the CLI's Terminated) then skips the release:
+    xarray's ``finally: close()`` waits on that lock for ever (a futex, with the temporary file left).
+    Here a signal only sets a flag; on leaving the block the previous handlers are restored and every
+    signal received is raised again, so its handler runs outside any lock (KeyboardInterrupt, the
+    CLI's handler, or the default action, which ends the process: ``cleanup()`` runs first then).
+    A signal the process ignores stays ignored.  Python runs signal handlers in the main thread only,
+    so in another thread the block defers nothing and nothing raises inside it.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received: list[int] = []
+    previous = {}
+    for signum in DEFERRED_SIGNALS:
+        handler = signal.getsignal(signum)
+        if handler is not None and handler is not signal.SIG_IGN:  # None: set outside Python, not restorable
+            previous[signum] = signal.signal(signum, lambda number, frame: received.append(number))
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        for signum in dict.fromkeys(received):
+            if previous[signum] is signal.SIG_DFL:
+                cleanup()
+            signal.raise_signal(signum)
+
+
+def _encoding(ds: xr.Dataset, compression: str = "zlib", chunksizes: tuple | None = None) -> dict:
     """float64 (or int8 flags) with the codec ``compression`` of :data:`CODECS`, no fill values."""
-    codec = CODECS[compression]
+    codec = dict(CODECS[compression], **({} if chunksizes is None else {"chunksizes": chunksizes}))
     encoding = {}
     for name, var in ds.variables.items():
         if np.issubdtype(var.dtype, np.floating):
@@ -498,35 +581,39 @@ def _encoding(ds: xr.Dataset, compression: str = "zlib") -> dict:
     return encoding
 
 
-def write_netcdf(ds: xr.Dataset, path, compression: str = "zlib") -> Path:
+def write_netcdf(ds: xr.Dataset, path, compression: str = "zlib", unlimited: str | None = None,
+                 chunksize: int | None = None) -> Path:
     """Write ``ds`` to ``path`` atomically (netCDF4/HDF5, float64, codec ``compression``); return the path.
 
     The file is written to a temporary file ``.NAME.<pid>.<hex>.bounce-tmp`` in
     the same directory, flushed to disk and moved into place with
     ``os.replace``: readers see either the old file or the complete new one, and
-    on any failure (also KeyboardInterrupt, and SIGTERM when the CLI's handler
-    turns it into an exception) no temporary file is left behind.  A temporary
-    left by a process killed outright (SIGKILL) is recognised by its name and
-    dead pid and removed by the next write to the same target.  A full disk is
-    reported as such (OSError ENOSPC, saying the old file is kept).  The target
-    must pass :func:`check_output_path`.
+    on any failure no temporary file is left behind.  SIGINT and SIGTERM wait
+    until the temporary file is closed (:func:`signals_deferred`), then act: the
+    temporary is removed, the old file kept.  A temporary left by a process
+    killed outright (SIGKILL) is recognised by its name and dead pid and removed
+    by the next write to the same target.  A full disk is reported as such
+    (OSError ENOSPC, saying the old file is kept).  The target must pass
+    :func:`check_output_path`.  ``unlimited``: a dimension left unlimited, its
+    variables in chunks of ``chunksize`` elements (a file appended to later).
     """
     path = check_output_path(path)
     remove_stale_temporaries(path)
-    tmp = path.parent / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{_TMP_SUFFIX}"
+    tmp = _tmp_path(path)
     try:
-        ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4",
-                     encoding=_encoding(ds, compression), unlimited_dims=())
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
+        with signals_deferred(cleanup=lambda: _unlink(tmp)):
+            ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4",
+                         encoding=_encoding(ds, compression, None if chunksize is None else (chunksize,)),
+                         unlimited_dims=() if unlimited is None else (unlimited,))
+            with open(tmp, "rb+") as fh:
+                os.fsync(fh.fileno())
         os.replace(tmp, path)
     except BaseException as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        if _disk_full(path.parent, exc):
-            kept = "the old file is kept unchanged" if path.exists() else "no file was written"
-            raise OSError(errno.ENOSPC, f"No space left on device (disk full) in {str(path.parent)!r} while "
-                                        f"writing {str(path)!r}; {kept}") from exc
+        full = is_disk_full(path.parent, exc)
+        _unlink(tmp)
+        if full:
+            raise disk_full_error(path, "the old file is kept unchanged" if path.exists()
+                                  else "no file was written") from exc
         raise
     with contextlib.suppress(OSError):  # persist the rename (best effort)
         dir_fd = os.open(path.parent, os.O_RDONLY)
@@ -535,3 +622,8 @@ def write_netcdf(ds: xr.Dataset, path, compression: str = "zlib") -> Path:
         finally:
             os.close(dir_fd)
     return path
+
+
+def _unlink(path: Path) -> None:
+    with contextlib.suppress(OSError):
+        os.unlink(path)

@@ -22,17 +22,23 @@ whose estimate exceeds the memory available, before allocating anything.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import math
 import os
 import sys
 from pathlib import Path
 
+import netCDF4
 import numpy as np
 
-from .kinds import KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES
 from .exact.events import CARRY_SIZE, SQRT2, run_events
-from .model import InputError, Parameters, check_supported
 from .exact.oscillator import make_oscillator
+from .io import (EVENT_VARIABLES, check_output_path, disk_full_error, is_disk_full, signals_deferred, to_dataset,
+                 write_netcdf)
+from .kinds import KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES
+from .model import InputError, Parameters, check_supported
+from .springs import spring_from_attrs
 from .trajectory import MAX_EVENTS, Trajectory, positive_int
 
 #: one-shot path: 6 float64 records + int8 kind (simulate), 4 derived float64 arrays (netCDF write)
@@ -165,9 +171,27 @@ def simulate_chunked(params: Parameters, initial, max_events: int = 1000, t_max:
 
 # --------------------------------------------------------------------------- streaming to netCDF
 
+#: the file a stream appends to, next to its target: ``<out>.partial``
+PARTIAL_SUFFIX = ".partial"
+#: the lock a stream holds on its partial file: ``.<out>.partial.bounce-lock``
+_LOCK_SUFFIX = ".bounce-lock"
+#: global attributes that define a streamed run (with its spring law and codec): --resume refuses a difference
+RUN_ATTRS = ("gamma", "mu", "initial_form", "x0", "xdot0", "y0", "ydot0", "xidot0", "eta0", "max_events", "t_max",
+             "energy_stop", "events_kept")
+#: the loop state a partial file carries between chunks (removed when the run ends)
+STREAM_ATTRS = ("stream_done", "stream_records", "stream_carry", "stream_kind_counts", "stream_chunk")
+
+
 def partial_path(out) -> Path:
     out = Path(out)
-    return out.with_name(out.name + ".partial")
+    return out.with_name(out.name + PARTIAL_SUFFIX)
+
+
+def check_paths(out) -> tuple[Path, Path]:
+    """``(out, partial)`` checked as :func:`bounce.io.check_output_path` checks an output: the partial is
+    written like an output, so a symbolic link, FIFO or device there is refused (OSError naming it)."""
+    out = check_output_path(out, suffix=PARTIAL_SUFFIX)
+    return out, check_output_path(partial_path(out))
 
 
 def kept_indices(max_events: int, keep: dict | None) -> np.ndarray | None:
@@ -185,13 +209,8 @@ def _chunk_trajectory(params, initial, records) -> Trajectory:
                       kind=kind, stop_reason="", t_end=0.0, settings={})
 
 
-def _create(path: Path, params, initial, settings: dict, keep: dict | None, chunk: int, compression: str,
-            max_records: int) -> None:
-    """The file's header: to_dataset's variables and attributes with an unlimited, empty ``event`` dimension,
-    chunked by ``FILE_CHUNK`` records or fewer: HDF5 allocates a chunk whole, so a run that writes at most
-    ``max_records`` records (``--events``, or what thinning keeps) gets chunks of that size."""
-    from .io import CODECS, to_dataset
-
+def _header(params, initial, settings: dict, keep: dict | None, chunk: int):
+    """The file's header: to_dataset's variables and attributes with an empty ``event`` dimension."""
     empty = Trajectory(params=params, initial=initial, t=np.empty(0), tau=np.empty(0), xdot=np.empty(0),
                        xidot=np.empty(0), eta=np.empty(0), energy_excess=np.empty(0),
                        kind=np.empty(0, dtype=np.int8), stop_reason="max_events", t_end=0.0, settings=settings)
@@ -202,10 +221,94 @@ def _create(path: Path, params, initial, settings: dict, keep: dict | None, chun
                                  units="1")
         ds.attrs["events_kept"] = "first {first} and {log_samples} log-spaced after them".format(**keep)
     ds.attrs.update(stream_done=0, stream_records=0, stream_carry=np.zeros(CARRY_SIZE),
-                    stream_chunk=chunk)
-    size = min(chunk, FILE_CHUNK, max_records)
-    encoding = {name: {"_FillValue": None, "chunksizes": (size,), **CODECS[compression]} for name in ds.variables}
-    ds.to_netcdf(path, mode="w", format="NETCDF4", engine="netcdf4", encoding=encoding, unlimited_dims=["event"])
+                    stream_kind_counts=np.zeros(len(KIND_NAMES), dtype=np.int64), stream_chunk=chunk)
+    return ds
+
+
+def _codec(nc) -> str:
+    """The codec (:data:`bounce.io.CODECS`) of a streamed file's records."""
+    filters = nc["t"].filters() or {}
+    return "zstd" if filters.get("zstd") else "zlib" if filters.get("zlib") else "none"
+
+
+def _differences(nc, header, spring, compression: str) -> list[str]:
+    """What differs between the run stored in ``nc`` and the one about to resume it: ``name: file, here``."""
+    def same(a, b):
+        if a is None or b is None or isinstance(a, str) or isinstance(b, str):
+            return a == b
+        return float(a) == float(b)
+
+    mine, theirs = header.attrs, nc.__dict__
+    out = [f"{k}: {theirs.get(k)!r} in the file, {mine.get(k)!r} here" for k in RUN_ATTRS
+           if not same(theirs.get(k), mine.get(k))]
+    stored = spring_from_attrs(theirs)
+    if stored != spring:
+        out.append(f"spring: {stored!r} in the file, {spring!r} here")
+    if _codec(nc) != compression:
+        out.append(f"compression: {_codec(nc)!r} in the file, {compression!r} here")
+    return out
+
+
+def _open_for_resume(part: Path, header, spring, compression: str):
+    """The partial file, open for appending, after checking it holds this very run (InputError if not)."""
+    try:
+        st = os.stat(part)
+    except FileNotFoundError:
+        raise InputError(f"--resume: no interrupted run to resume ({str(part)!r} does not exist)") from None
+    if st.st_nlink > 1:
+        raise InputError(f"--resume: {str(part)!r} has {st.st_nlink} names (hard links): appending to it would change "
+                         "the others too; rerun without --resume to start over")
+    try:
+        nc = netCDF4.Dataset(part, "a")
+    except OSError as exc:  # netCDF4 reports a damaged HDF5 file as OSError ("NetCDF: HDF error")
+        raise InputError(f"--resume: {str(part)!r} cannot be read as a netCDF file (truncated or damaged: "
+                         f"{exc.strerror or exc}); rerun without --resume to start over") from None
+    try:
+        missing = [k for k in STREAM_ATTRS if k not in nc.ncattrs()]
+        if missing or "t" not in nc.variables:
+            raise InputError(f"--resume: {str(part)!r} is not the partial file of a bounce --stream run (no "
+                             f"{', '.join(missing) or 'records'}); rerun without --resume to start over")
+        differ = _differences(nc, header, spring, compression)
+        if differ:
+            raise InputError(f"--resume: {str(part)!r} holds a different run ({'; '.join(differ)}); resume with the "
+                             "arguments of that run, or rerun without --resume to start over")
+    except BaseException:
+        nc.close()
+        raise
+    return nc
+
+
+@contextlib.contextmanager
+def _lock(part: Path):
+    """Hold ``.<partial>.bounce-lock`` (flock) while a stream writes ``part``: a second run to the same output
+    is refused (InputError) instead of truncating the partial file under the first.  The lock file is removed
+    at the end; one left by a killed run is taken over by the next."""
+    path = part.with_name(f".{part.name}{_LOCK_SUFFIX}")
+    while True:
+        fd = os.open(path, os.O_CREAT | os.O_RDWR | os.O_NOFOLLOW | os.O_CLOEXEC, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.read(fd, 32).decode(errors="replace").strip() or "?"
+            os.close(fd)
+            raise InputError(f"--out: another bounce --stream run (pid {holder}) is writing {str(part)!r}; wait for it "
+                             "to end (then --resume if it was interrupted) or choose another --out") from None
+        try:
+            current = os.stat(path)
+        except FileNotFoundError:
+            current = None
+        if current is not None and os.path.samestat(current, os.fstat(fd)):
+            break
+        os.close(fd)  # the holder removed it after we opened it: take the lock of the file now at that name
+    try:
+        with contextlib.suppress(OSError):  # the pid only names the holder to a refused run (a full disk is met next)
+            os.ftruncate(fd, 0)
+            os.write(fd, f"{os.getpid()}\n".encode())
+        yield
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(path)
+        os.close(fd)
 
 
 def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: float = math.inf,
@@ -213,54 +316,77 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
                      resume: bool = False, progress: bool | None = None, compression: str = "none") -> dict:
     """Simulate and append the records to ``out`` chunk by chunk; return a summary dict.
 
-    ``resume``: continue ``<out>.partial`` from its stored state (same parameters required).
+    The records go to ``<out>.partial`` (checked like ``out``; replaced atomically by a new run, so a
+    hard link's other name is never written), moved to ``out`` at the end.  One run at a time per
+    ``out`` (:func:`_lock`).  ``resume``: continue ``<out>.partial`` from its stored state, after
+    checking that it holds this very run (parameters, spring, initial state, stop rules, thinning,
+    codec; InputError naming what differs).  A chunk is written with SIGINT and SIGTERM deferred
+    (:func:`bounce.io.signals_deferred`), so an interrupted run stops at its last complete chunk.  On
+    a full disk the partial file is removed (it holds a damaged chunk) and OSError ENOSPC raised.
     """
-    import netCDF4
-
-    from .io import EVENT_VARIABLES
-
     max_events = positive_int("events", max_events, MAX_STREAM_EVENTS)
     chunk = positive_int("chunk", chunk, MAX_EVENTS)
-    out = Path(out)
-    part = partial_path(out)
+    out, part = check_paths(out)
     settings = {"max_events": max_events, "t_max": float(t_max), "energy_stop": float(energy_stop)}
+    header = _header(params, initial, settings, keep, chunk)
     kept = kept_indices(max_events, keep)
-    if resume:
-        if not part.exists():
-            raise InputError(f"--resume: no interrupted run to resume ({str(part)!r} does not exist)")
-    else:  # records: at most the kept events and the last one, or every event
-        _create(part, params, initial, settings, keep, chunk, compression,
-                max_events if kept is None else min(len(kept) + 1, max_events))
-    counts = np.zeros(len(KIND_NAMES), dtype=np.int64)
-    with netCDF4.Dataset(part, "a") as nc:
-        nc.set_auto_maskandscale(False)
-        for var in nc.variables.values():  # HDF5's default chunk cache (MBs per variable) would grow with the file
-            var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61, preemption=1.0)
-        a = nc.__dict__
+    # HDF5 allocates a chunk whole: a run that can write only a few records (the kept events and the last
+    # one, or --events) is chunked by that many, not by FILE_CHUNK records per variable
+    records = max_events if kept is None else min(len(kept) + 1, max_events)
+    with _lock(part):
         if resume:
-            mine = {"gamma": params.gamma, "mu": params.mu, "max_events": max_events, "t_max": float(t_max),
-                    "energy_stop": float(energy_stop)}
-            differ = [k for k, v in mine.items() if float(a[k]) != float(v)]
-            if differ or ("event" in nc.variables) != bool(keep):
-                raise InputError(f"--resume: {str(part)!r} is a different run (differs in "
-                                 f"{', '.join(differ) or 'thinning'}); rerun without --resume")
-            counts[:] = np.asarray(a.get("stream_kind_counts", counts))
-        done, records_written = int(a["stream_done"]), int(a["stream_records"])
-        carry = np.array(a["stream_carry"], dtype=np.float64) if done else None
-        stop, t_end = "max_events", float(a["t_end"])
-        with _bar(max_events, progress, initial=done) as bar:
-            for first, records, stop, t_end, carry in chunks(params, initial, max_events, t_max, energy_stop,
-                                                             chunk, carry, done):
-                m = len(records[0])
-                counts += np.bincount(records[6], minlength=len(KIND_NAMES))
-                index = np.arange(first, first + m)
-                last = stop != "max_events" or first + m == max_events
-                if kept is not None:
-                    sel = np.isin(index, kept) | ((index == first + m - 1) & last)
-                    records = tuple(r[sel] for r in records)
-                    index = index[sel]
-                traj = _chunk_trajectory(params, initial, records)
-                k = len(index)
+            nc = _open_for_resume(part, header, params.spring, compression)
+        else:
+            write_netcdf(header, part, compression, unlimited="event", chunksize=min(chunk, FILE_CHUNK, records))
+            nc = netCDF4.Dataset(part, "a")
+        try:
+            summary, final = _append(nc, params, initial, settings, kept, chunk, progress)
+            with signals_deferred():  # the partial file stays resumable until it is the output
+                nc.setncatts(final)
+                for name in STREAM_ATTRS:
+                    nc.delncattr(name)
+                nc.close()
+                os.replace(part, out)
+        except BaseException as exc:
+            full = is_disk_full(part.parent, exc)  # asked while the partial file still takes its space
+            if nc.isopen():
+                with contextlib.suppress(RuntimeError, OSError):
+                    nc.close()
+            if not full:
+                raise
+            with contextlib.suppress(OSError):
+                os.unlink(part)
+            kept = "the old file is kept unchanged" if out.exists() else "no file was written"
+            raise disk_full_error(out, f"the partial file was removed; {kept}") from exc
+    return summary
+
+
+def _append(nc, params, initial, settings, kept, chunk, progress) -> tuple[dict, dict]:
+    """Run the chunks into the open partial file ``nc`` (see :func:`stream_to_netcdf`), keeping the events
+    ``kept`` (:func:`kept_indices`; None: all); return the summary and the file's final attributes."""
+    max_events, t_max, energy_stop = settings["max_events"], settings["t_max"], settings["energy_stop"]
+    nc.set_auto_maskandscale(False)
+    for var in nc.variables.values():  # HDF5's default chunk cache (MBs per variable) would grow with the file
+        var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61, preemption=1.0)
+    a = nc.__dict__
+    counts = np.array(a["stream_kind_counts"], dtype=np.int64)
+    done, records_written = int(a["stream_done"]), int(a["stream_records"])
+    carry = np.array(a["stream_carry"], dtype=np.float64) if done else None
+    stop, t_end = "max_events", float(a["t_end"])
+    with _bar(max_events, progress, initial=done) as bar:
+        for first, records, stop, t_end, carry in chunks(params, initial, max_events, t_max, energy_stop,
+                                                         chunk, carry, done):
+            m = len(records[0])
+            counts += np.bincount(records[6], minlength=len(KIND_NAMES))
+            index = np.arange(first, first + m)
+            last = stop != "max_events" or first + m == max_events
+            if kept is not None:
+                sel = np.isin(index, kept) | ((index == first + m - 1) & last)
+                records = tuple(r[sel] for r in records)
+                index = index[sel]
+            traj = _chunk_trajectory(params, initial, records)
+            k = len(index)
+            with signals_deferred():  # a chunk is written whole or not at all
                 for name in EVENT_VARIABLES:
                     nc[name][records_written:records_written + k] = getattr(traj, name)
                 nc["kind"][records_written:records_written + k] = traj.kind
@@ -270,17 +396,14 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
                 nc.setncatts({"stream_done": first + m, "stream_records": records_written, "stream_carry": carry,
                               "stream_kind_counts": counts, "t_end": t_end})
                 nc.sync()
-                bar.update(m)
-        n_events = int(nc.stream_done)
-        summary_traj = Trajectory(params=params, initial=initial, t=np.empty(0), tau=np.empty(0),
-                                  xdot=np.empty(0), xidot=np.empty(0), eta=np.empty(0), energy_excess=np.empty(0),
-                                  kind=np.empty(0, dtype=np.int8), stop_reason=stop, t_end=t_end, settings=settings)
-        t_valid = summary_traj.t_valid if stop in ("t_max", "sticky_forever") else (
-            float(nc["t"][records_written - 1]) if records_written else 0.0)
-        nc.setncatts({"stop_reason": stop, "t_end": float(t_end), "t_valid": float(t_valid),
-                      "n_events_simulated": n_events})
-        for name in ("stream_done", "stream_records", "stream_carry", "stream_kind_counts", "stream_chunk"):
-            nc.delncattr(name)
-    os.replace(part, out)
-    return {"events": n_events, "records": records_written, "counts": dict(zip(KIND_NAMES, counts.tolist())),
-            "stop_reason": stop, "t_end": float(t_end)}
+            bar.update(m)
+    n_events = int(nc.stream_done)
+    summary_traj = Trajectory(params=params, initial=initial, t=np.empty(0), tau=np.empty(0),
+                              xdot=np.empty(0), xidot=np.empty(0), eta=np.empty(0), energy_excess=np.empty(0),
+                              kind=np.empty(0, dtype=np.int8), stop_reason=stop, t_end=t_end, settings=settings)
+    t_valid = summary_traj.t_valid if stop in ("t_max", "sticky_forever") else (
+        float(nc["t"][records_written - 1]) if records_written else 0.0)
+    summary = {"events": n_events, "records": records_written, "counts": dict(zip(KIND_NAMES, counts.tolist())),
+               "stop_reason": stop, "t_end": float(t_end)}
+    return summary, {"stop_reason": stop, "t_end": float(t_end), "t_valid": float(t_valid),
+                     "n_events_simulated": n_events}

@@ -115,6 +115,30 @@ def test_two_clean_runs_give_identical_bytes(ci_results, tmp_path_factory):
     assert not differ, f"not byte-identical across two clean runs: {differ}"
 
 
+#: a time in seconds written as text: "3.49 ms", "2 seconds", "1.5 s CPU", "CPU in process seconds"
+_SECONDS = re.compile(r"\d\s*(?:ms|seconds?)\b|\d\s*s\s+(?:CPU|wall)\b|CPU in")
+
+
+def test_results_carry_no_timings(ci_results):
+    """Issue 25 item 10: outside results/timing/ no dataset carries a CPU or wall time, neither as a variable in
+    seconds nor written into a string or an attribute (the least model's reason read "at 3.49 ms CPU", the
+    work-precision files' units note "CPU in process seconds")."""
+    found = []
+    for path in sorted(ci_results.rglob("*.nc")):
+        if path.relative_to(ci_results).parts[0] == "timing":
+            continue
+        with xr.open_dataset(path) as ds:
+            texts = [str(v) for v in ds.attrs.values()]
+            for name, var in ds.variables.items():
+                if var.attrs.get("units") == "s":
+                    found.append(f"{path.name}: {name} in seconds")
+                texts += [str(v) for v in var.attrs.values()]
+                if var.dtype.kind in "OUS":
+                    texts += [str(x) for x in np.ravel(var.values)]
+        found += [f"{path.name}: {text[:100]!r}" for text in texts if _SECONDS.search(text)]
+    assert not found, "\n".join(found)
+
+
 def test_rerun_does_nothing(ci_results):
     proc = _snakemake(_launch_dir(ci_results), "--configfile", str(ROOT / "config" / "ci.yaml"), "-n")
     assert "Nothing to be done" in proc.stdout + proc.stderr

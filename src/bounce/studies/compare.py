@@ -440,7 +440,7 @@ def _assemble_wp(runs, rows, ref, params, spec, idx, asym_n) -> xr.Dataset:
         "track_tol": float(wp["track_tol"]),
         "y_window": _json({"t": list(map(float, wp["y_window"]["t"]))} if "y_window" in wp else {}),
         "reference_impacts": int(ref.t.size), "spec": _json(wp),
-        "Conventions": "CF-1.10", "units_note": "dimensionless: lengths in L, times in sqrt(m/2k), CPU in process seconds",
+        "Conventions": "CF-1.10", "units_note": "dimensionless: lengths in L, times in sqrt(m/2k)",
     })
     return ds
 
