@@ -101,9 +101,12 @@ def test_bad_number_is_named(path, value, words):
     ("scenes.nonlin-hertz.spring", {"law": "power", "rho": 1.0, "a": 0.5}, r"^scenes\.nonlin-hertz\.spring: 'b' is a required"),
     ("scenes.nonlin-hertz.spring", {"law": "linear", "rho": 1.0}, r"^scenes\.nonlin-hertz\.spring: unknown key 'rho'; allowed: law$"),
     ("scenes.nonlin-hertz.spring", {"law": "cubic"}, r"^scenes\.nonlin-hertz\.spring\.law: 'cubic' is not one of \['linear', 'power'\]"),
+    ("figures.rigid-fall.samples", 1e12, r"^figures\.rigid-fall\.samples: must be <= 10000000, got .* \(a count of dense-output"),
+    ("reduced.switch.samples", 10**9, r"^reduced\.switch\.samples: must be <= 10000000"),
+    ("figures", {}, r"^figures: 'rigid-fall' is a required property$"),
 ])
-def test_spring_domain_is_closed(path, value, words):
-    """One line naming the key (before: accepted)."""
+def test_spring_domain_figures_and_samples_are_closed(path, value, words):
+    """One line naming the key (before: accepted, or a KeyError traceback when the Snakefile read ``figures``)."""
     with pytest.raises(ConfigError, match=words) as err:
         validated(_with(path, value))
     assert "\n" not in str(err.value)
@@ -120,6 +123,23 @@ def test_spring_fragment_is_built_from_the_registry():
     assert spring["properties"]["law"]["enum"] == list(SPRING_LAWS)
     power = next(b["then"] for b in spring["allOf"] if b["if"]["properties"]["law"]["const"] == "power")
     assert power["required"] == ["rho", "a", "b"] and power["properties"]["a"]["maximum"] == 50.0
+
+
+def test_every_configured_figure_is_required():
+    """The schema requires exactly the figure blocks the registry reads (bounce.figures.FIGURES), so a validated
+    config always has them (``figures: {}`` was a KeyError traceback in the Snakefile's figure_table)."""
+    from bounce.figures import figure_table
+    from bounce.pipeline.config import load_schema
+
+    read = set()
+
+    class Recorder(dict):
+        def __getitem__(self, key):
+            read.add(key)
+            return CONFIG["figures"][key]
+
+    figure_table({**validated(CONFIG), "figures": Recorder()})
+    assert set(load_schema()["properties"]["figures"]["required"]) == read
 
 
 def test_scene_below_the_floor_is_refused_by_the_model():
