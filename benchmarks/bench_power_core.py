@@ -26,7 +26,8 @@ import time
 
 import numpy as np
 
-from bounce import Parameters, State, power_sticky
+from bounce import Parameters, State
+from bounce.series import sticky as power_sticky
 from bounce.exact.flight import FOUND, NEVER
 from bounce.series.events import run_power_events
 from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
