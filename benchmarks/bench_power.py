@@ -70,7 +70,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 import power_reference as PR  # noqa: E402
 
 from bounce import Deviations, Parameters, State, simulate  # noqa: E402
-from bounce.exact.events import IMPACT  # noqa: E402
+from bounce.kinds import IMPACT
 from bounce.methods import heyoka_taylor as HT  # noqa: E402
 from bounce.springs import SPRING_LAWS  # noqa: E402
 from bounce.analysis.theory import nonlin_alpha_limit  # noqa: E402

@@ -14,7 +14,7 @@ rest on the floor: the median CPU time per phase, and the series steps and step-
 phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
 around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
 
-With --disc instead: the Cauchy disc fraction of bounce.series.taylor.disc_fraction (min(0.95, 2/a))
+With --disc instead: the Cauchy disc fraction of bounce.springs.power.disc_fraction (min(0.95, 2/a))
 against the fixed 0.95 it replaced, as the median CPU time of 2e4 impacts of two drops (psi = 6 at rest,
 the spring at xi = xi_eq or at its rest length xi = 0) for a = 2.5 .. 24, b = 1/2, gamma = mu = 0.01.
 """
@@ -27,16 +27,18 @@ import time
 import numpy as np
 
 from bounce import Parameters, State
-from bounce.series import sticky as power_sticky
 from bounce.exact.flight import FOUND, NEVER
+from bounce.kinds import IMPACT, STOP_EVENTS
+from bounce.series import sticky as series_sticky
 from bounce.series.events import run_power_events
-from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
+from bounce.series.taylor import DEGREE_LONG, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
+from bounce.springs.power import DISC
 from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after
-#: crossing the rest length xi = 0 (both of tests/test_power_sticky.py), the onset g0.1_mu1 of
-#: tests/test_power_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
+#: crossing the rest length xi = 0 (both of tests/series/test_series_sticky.py), the onset g0.1_mu1 of
+#: tests/series/test_series_sticky_onset.py (F = 0, F' < 0: xi' = (gamma + |xi|^1.5) / (2 mu |xi|^0.5);
 #: detaches after crossing xi = 0), and a phase proved infinite
 STICKY_STARTS = {
     "detach": (0.01, 0.5, -0.0696, -0.2),
@@ -58,13 +60,13 @@ def timed_events(law, start, n, repeats):
         t0 = time.process_time()
         m, stop, _ = run_power_events(*start, law, n, np.inf, 0.0, *out, kind)
         times.append(time.process_time() - t0)
-        assert m == n and stop == 0, (m, n, stop)  # stopped by the event count
+        assert m == n and stop == STOP_EVENTS, (m, n, stop)  # stopped by the event count
     return float(np.median(times)), out, kind
 
 
 def rate(rho, a, b, gamma, mu, n, repeats):
     seconds, out, kind = timed_events(law_array(rho, a, b, mu, gamma), (0.0, 1e-7, 0.0, 0.0), n, repeats)
-    assert np.all(kind == 0)  # impacts only
+    assert np.all(kind == IMPACT)  # impacts only
     return n / seconds, out
 
 
@@ -73,15 +75,15 @@ def sticky_costs(gamma, mu, xi, v, calls, repeats):
     law = law_array(1.0, 0.5, 0.5, mu, gamma)
     eta = xi - float(law[L_XI_EQ])
     work = [np.empty(DEGREE_LONG + 2) for _ in range(3)]
-    status, duration, _, _ = power_sticky.sticky_phase(v, eta, np.inf, law, *work, False)  # compile
+    status, duration, _, _ = series_sticky.sticky_phase(v, eta, np.inf, law, *work, False)  # compile
     times = []
     for _ in range(repeats):
         t0 = time.process_time()
         for _ in range(calls):
-            power_sticky.sticky_phase(v, eta, np.inf, law, *work, False)
+            series_sticky.sticky_phase(v, eta, np.inf, law, *work, False)
         times.append((time.process_time() - t0) / calls)
-    with counting(power_sticky, ("taylor_coefficients", "tail_bounds")) as counts:
-        again = power_sticky.sticky_phase.py_func(v, eta, np.inf, law, *work, False)
+    with counting(series_sticky, ("taylor_coefficients", "tail_bounds")) as counts:
+        again = series_sticky.sticky_phase.py_func(v, eta, np.inf, law, *work, False)
     assert again[:2] == (status, duration), (again, status, duration)
     return float(np.median(times)), counts["taylor_coefficients"], counts["tail_bounds"], status, duration
 

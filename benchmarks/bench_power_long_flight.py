@@ -3,7 +3,7 @@
     python benchmarks/bench_power_long_flight.py [--x0 X0] [--points N] [--dps D]
     python benchmarks/bench_power_long_flight.py --realisations N
 
-``--realisations N``: the flight of tests/test_power_reference.py's long-flight test (x0 = 5, mu = 1e-6,
+``--realisations N``: the flight of tests/series/test_series_reference.py's long-flight test (x0 = 5, mu = 1e-6,
 ~45 crossings) for N values gamma = 1e-5 (1 + 0.0137 k), k < N: independent draws of the rounding
 random walk (the spring's motion does not depend on x0, only on gamma through xi_eq), each impact's
 eta against the reference, relative to W = |xi_eq|; printed with their rms and largest value, against
@@ -17,7 +17,7 @@ bounce's state at N checkpoints t (:func:`bounce.series.flight.first_contact` wi
 against the independent reference ``tests/power_reference.py`` (at D digits, default 30) from the
 same start, then the impact.  Printed per checkpoint: the crossings n of xi = 0 so far, the errors
 of x (relative to X0), x' (to gamma t), eta (to W), xi' (to V), the spring energy's error (exact
-arithmetic on bounce's state; relative to its value) and the bound of power_flight's docstring for
+arithmetic on bounce's state; relative to its value) and the bound of series.flight's docstring for
 eta, 0.07 eps n^1.5 (eps = 2^-52; the energy's random walk of roundings turned into phase by the
 energy-dependent frequency).  The reference needs mu > 0: it runs at mu = 1e-300 (a change of
 the flight ~1e-300).  Cost: ~2 min for the default flight (the reference).

@@ -195,7 +195,7 @@ def _first_over(a, b, thr):
 def run_scene(name, cfg, args, notes):
     import mpmath
     from bounce import Parameters, State
-    from bounce.exact.events import IMPACT
+    from bounce.kinds import IMPACT
     from bounce.methods import scipy_ivp
 
     gamma, mu, psi0 = cfg["gamma"], cfg["mu"], cfg["psi0"]

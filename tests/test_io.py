@@ -12,7 +12,7 @@ import xarray as xr
 import bounce
 import bounce.io as bio
 from bounce import Deviations, Parameters, State, simulate
-from bounce.exact.events import KIND_NAMES
+from bounce.kinds import KIND_NAMES
 from bounce.sampling import sample_trajectory
 
 P = Parameters(gamma=0.01, mu=0.01)

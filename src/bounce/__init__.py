@@ -6,7 +6,8 @@ from ._jit_cache import configure as _configure_jit_cache
 _configure_jit_cache()  # before any kernel is decorated
 
 from .model import Deviations, InputError, Parameters, State
-from .simulate import Trajectory, simulate  # noqa: E402
+from .simulate import simulate  # noqa: E402
+from .trajectory import Trajectory  # noqa: E402
+from ._version import __version__  # noqa: E402
 
-__version__ = "0.1.0"
 __all__ = ["Deviations", "InputError", "Parameters", "State", "Trajectory", "simulate", "__version__"]

@@ -8,15 +8,15 @@ import pkgutil
 import sys
 
 
-def discover(package: str, path, attribute: str, kind: type) -> dict:
+def discover(package: str, path, attribute: str, kind: type, family: str | None = None) -> dict:
     """name -> object for every module of ``package`` whose ``attribute`` is a ``kind``
-    (or whose ``attribute + 'S'`` is a tuple of them, for modules holding a family)."""
+    (or whose ``family``, default ``attribute + 'S'``, is a tuple of them, for modules holding a family)."""
     found = {}
     for info in pkgutil.iter_modules(path):
-        if info.name == "base":
+        if info.name == "base" or info.name.startswith("_"):
             continue
         module = importlib.import_module(f"{package}.{info.name}")
-        objs = [getattr(module, attribute, None), *getattr(module, attribute + "S", ())]
+        objs = [getattr(module, attribute, None), *getattr(module, family or attribute + "S", ())]
         for obj in objs:
             if isinstance(obj, kind):
                 found[obj.name] = obj

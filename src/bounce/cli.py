@@ -47,13 +47,14 @@ import threading
 
 import numpy as np
 
-from . import __version__
-from .exact.events import KIND_NAMES
+from ._version import __version__
+from .kinds import KIND_NAMES
 from .io import CODECS, check_output_path, method_dataset, to_dataset, write_netcdf
 from .model import GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported
-from .simulate import BYTES_PER_EVENT, MAX_EVENTS, simulate
+from .simulate import simulate
 from .springs import SPRING_LAWS, spring_from_spec
 from .springs.base import FLIGHT_MAX
+from .trajectory import BYTES_PER_EVENT, MAX_EVENTS
 from .stream import (DEFAULT_CHUNK, check_memory, partial_path, progress_enabled, simulate_chunked,
                      stream_to_netcdf)
 
@@ -501,6 +502,10 @@ def main(argv=None) -> int:
             return check_main(argv[1:])
         argv = _join_negative_numbers(argv)
         _reject_repeated_options(argv)
+        if argv[:1] == ["gas"]:  # a gas of grains (bounce.gas_cli)
+            from .gas_cli import main as gas_main
+
+            return gas_main(argv[1:])
         args = build_parser().parse_args(argv)
         if args.command == "simulate":
             return _simulate_command(args)

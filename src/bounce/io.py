@@ -37,11 +37,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .exact.events import KIND_NAMES
+from ._version import __version__
+from .kinds import KIND_NAMES
 from .model import Deviations, Parameters, State
 from .sampling import sample_trajectory
-from .simulate import Trajectory
+from .trajectory import Trajectory
 from .springs import spring_from_attrs
 
 __all__ = [
@@ -356,7 +356,7 @@ def _trajectory(ds: xr.Dataset, n: int | None = None, check_t_valid: bool = True
 
 
 def from_dataset(ds: xr.Dataset) -> Trajectory:
-    """Rebuild the :class:`~bounce.simulate.Trajectory` stored in ``ds`` (exactly: same parameters,
+    """Rebuild the :class:`~bounce.trajectory.Trajectory` stored in ``ds`` (exactly: same parameters,
     initial state and event arrays), e.g. for :func:`bounce.sampling.sample_trajectory`.
 
     Raises :class:`DatasetError` if ``ds`` is not a complete trajectory dataset

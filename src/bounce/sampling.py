@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from .errors import InputError
-from .exact.events import STICKY_START
+from .kinds import STICKY_START
 from .exact.flight import FOUND, flight_spring, gap, oscillator_at
 from .exact.oscillator import fundamental, make_oscillator
 from .series.flight import first_contact
@@ -113,7 +113,7 @@ def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid,
 
     ``initial`` is the (x, xdot, xidot, eta) state at t = 0 (a
     :class:`bounce.model.Deviations` or a 4-tuple); the event arrays are those
-    of :class:`bounce.simulate.Trajectory` (or of its netCDF dataset).  ``spring``: the law
+    of :class:`bounce.trajectory.Trajectory` (or of its netCDF dataset).  ``spring``: the law
     (:mod:`bounce.springs`); its exact solver's dense output is used: the series steps for a law the
     series solver serves (eta = xi - xi_eq of that law), the closed forms for the linear law (also when
     None).  Returns a dict of float64 arrays with keys x, xdot, y_minus_yeq, ydot.
@@ -140,7 +140,7 @@ def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid,
 
 
 def sample_trajectory(traj, times):
-    """:func:`sample` for a :class:`bounce.simulate.Trajectory` (closed forms for the linear spring,
+    """:func:`sample` for a :class:`bounce.trajectory.Trajectory` (closed forms for the linear spring,
     the series steps for the power law)."""
     spring = traj.params.spring
     return sample(

@@ -20,7 +20,8 @@ import math
 import numpy as np
 
 from .model import Deviations, InputError, Parameters, State
-from .simulate import Trajectory, simulate
+from .simulate import simulate
+from .trajectory import Trajectory
 from .springs import spring_from_spec
 
 

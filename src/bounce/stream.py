@@ -4,7 +4,7 @@
 the loop's whole state between calls (``carry``), so the records are the bits of one call
 (tests/test_stream.py).  On top of it:
 
-* :func:`simulate_chunked`: the :class:`~bounce.simulate.Trajectory` of
+* :func:`simulate_chunked`: the :class:`~bounce.trajectory.Trajectory` of
   :func:`bounce.simulate.simulate`, in memory, with a progress bar;
 * :func:`stream_to_netcdf`: the records appended to a netCDF file with an unlimited
   ``event`` dimension (all of them, or thinned on the fly to the first ``first`` events and
@@ -29,10 +29,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .exact.events import CARRY_SIZE, KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES, run_events
+from .kinds import KIND_NAMES, STOP_EVENTS, STOP_FAILED, STOP_NAMES
+from .exact.events import CARRY_SIZE, SQRT2, run_events
 from .model import InputError, Parameters, check_supported
 from .exact.oscillator import make_oscillator
-from .simulate import MAX_EVENTS, SQRT2, Trajectory, _positive_int
+from .trajectory import MAX_EVENTS, Trajectory, positive_int
 
 #: one-shot path: 6 float64 records + int8 kind (simulate), 4 derived float64 arrays (netCDF write)
 BYTES_PER_EVENT = 6 * 8 + 1 + 4 * 8
@@ -98,8 +99,8 @@ def chunks(params: Parameters, initial, max_events: int, t_max: float = math.inf
     in place.  ``carry`` and ``done`` resume an earlier run after its ``done`` events.  ``stop``
     is a STOP_NAMES entry; the generator ends after the chunk where the run stops.
     """
-    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
-    chunk = _positive_int("chunk", chunk, MAX_EVENTS)
+    max_events = positive_int("events", max_events, MAX_STREAM_EVENTS)
+    chunk = positive_int("chunk", chunk, MAX_EVENTS)
     if params.spring.solver != "exact":
         raise InputError(f"chunked runs drive the closed-form event loop; got the {params.spring.name} spring")
     start = initial.deviations(params)
@@ -144,7 +145,7 @@ def _bar(total: int, progress: bool | None, initial: int = 0):
 def simulate_chunked(params: Parameters, initial, max_events: int = 1000, t_max: float = math.inf,
                      energy_stop: float = 0.0, chunk: int = DEFAULT_CHUNK, progress: bool | None = None) -> Trajectory:
     """:func:`bounce.simulate.simulate` in chunks (bit for bit the same Trajectory), with a progress bar."""
-    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
+    max_events = positive_int("events", max_events, MAX_STREAM_EVENTS)
     out = [np.empty(max_events) for _ in range(6)]
     kind = np.empty(max_events, dtype=np.int8)
     n, stop, t_end = 0, STOP_NAMES[STOP_EVENTS], 0.0
@@ -214,8 +215,8 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
 
     from .io import EVENT_VARIABLES
 
-    max_events = _positive_int("events", max_events, MAX_STREAM_EVENTS)
-    chunk = _positive_int("chunk", chunk, MAX_EVENTS)
+    max_events = positive_int("events", max_events, MAX_STREAM_EVENTS)
+    chunk = positive_int("chunk", chunk, MAX_EVENTS)
     out = Path(out)
     part = partial_path(out)
     settings = {"max_events": max_events, "t_max": float(t_max), "energy_stop": float(energy_stop)}

@@ -45,7 +45,8 @@ from bounce.checks.base import (
 from bounce.checks.sticky_lemmas import sticky_run
 from bounce.claims_cli import apply_defaults, group_spec
 from bounce.claims_cli import main as check_main
-from bounce.exact.events import DETACH, GRAZING, IMPACT, STICKY_START, contact_window
+from bounce.kinds import DETACH, GRAZING, IMPACT, STICKY_START
+from bounce.exact.events import contact_window
 from bounce.scenes import scene_dataset
 from bounce.analysis.sticky import sticky_duration
 from bounce.sweeps import registry as sweep_registry
@@ -325,7 +326,7 @@ def test_one_claim_with_an_experiment_and_a_sweep_runs_alone(tmp_path, capsys):
 
 def test_restart_reproduces_thinned_events():
     """dataset_series on a thinned dataset gives the same tau_n, Xdot_(n+1) as the full simulation."""
-    from bounce.checks.main_theorem import dataset_series
+    from bounce.analysis.observables import dataset_series
 
     full = scene_dataset(dict(UD, keep=None))
     s_thin = dataset_series(scenes()["ud"])
@@ -447,14 +448,14 @@ def test_rigid_flips_on_wrong_closed_form(monkeypatch):
         out["t_sum"] = out["t_sum"] * (1 + 1e-9)
         return out
 
-    monkeypatch.setattr(rigid_models, "constant_r", wrong)
+    monkeypatch.setattr(rigid_collapse, "constant_r", wrong)
     assert row(_rigid([scenes()["ud"]]), "rigid-collapse/constant-r-collapse").verdict == NOT_REPRODUCED
 
 
 def test_rigid_flips_on_wrong_exponent(monkeypatch):
     """A map with beta = 3/2 (n^2 u_n -> const) must fail the beta = 6/5 rows."""
     real = rigid_collapse.iterate_map
-    monkeypatch.setattr(rigid_models, "iterate_map",
+    monkeypatch.setattr(rigid_collapse, "iterate_map",
                         lambda u0, step, bounces: real(u0, lambda x: x - 1e-1 * x**1.5, bounces))
     ds = _rigid([scenes()["ud"]])
     assert row(ds, "rigid-collapse/onefifth-limit").verdict == NOT_REPRODUCED

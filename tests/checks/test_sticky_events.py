@@ -12,7 +12,7 @@ from bounce.analysis import theory
 from bounce.checks import sticky_events as se
 from bounce.checks.base import NOT_REPRODUCED, REPRODUCED
 from bounce.claims_cli import group_spec
-from bounce.exact.events import DETACH, STICKY_START
+from bounce.kinds import DETACH, STICKY_START
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -24,19 +24,8 @@ from mpmath import mp, mpf
 
 from bounce.analysis import reference as R
 from bounce import Deviations, Parameters, State, simulate
-from bounce.exact.events import (
-    GRAZING,
-    IMPACT,
-    STICKY_START,
-    STOP_FAILED,
-    STOP_NAMES,
-    _is_sticky_onset,
-    _is_tangential,
-    compensated_add,
-    energy_excess,
-    floor_force,
-    run_events,
-)
+from bounce.kinds import GRAZING, IMPACT, STICKY_START, STOP_FAILED, STOP_NAMES
+from bounce.exact.events import _is_sticky_onset, _is_tangential, compensated_add, energy_excess, floor_force, run_events
 from bounce.exact.oscillator import make_oscillator
 from contacts import constructed_contact, reference_flight, rounding_level
 

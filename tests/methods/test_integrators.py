@@ -260,7 +260,7 @@ def test_budgets_stop_time_stepping():
 def _methods_slice(methods: dict, kind: str, block: str | None = None) -> dict:
     """A study's slice of a ``methods`` section, validated and defaulted by config/schema.yaml as in the pipeline."""
     from bounce.pipeline.config import load_schema, validated
-    from bounce.studies import study_slice
+    from bounce.studies.base import study_slice
 
     schema = {**load_schema(), "required": ["methods"]}
     return study_slice(validated({"methods": methods}, schema)["methods"], kind, block)

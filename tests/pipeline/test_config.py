@@ -128,7 +128,7 @@ def test_spring_fragment_is_built_from_the_registry():
 def test_every_configured_figure_is_required():
     """The schema requires exactly the figure blocks the registry reads (bounce.figures.FIGURES), so a validated
     config always has them (``figures: {}`` was a KeyError traceback in the Snakefile's figure_table)."""
-    from bounce.figures import figure_table
+    from bounce.pipeline.catalogue import figure_table
     from bounce.pipeline.config import load_schema
 
     read = set()

@@ -9,9 +9,12 @@ import pytest
 import yaml
 
 from bounce.checks.base import PAPER, REPRODUCED, Verdict, verdict_dataset
-from bounce.figures import FIGURES, pipeline_figures
+from bounce.figures import FIGURES
+from bounce.pipeline.catalogue import pipeline_figures
 from bounce.pipeline.report import ReportError, ordered_subjects, write
-from bounce.studies import STUDIES
+from bounce.studies import registry as study_registry
+
+STUDIES = study_registry()
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())

@@ -1,5 +1,5 @@
-"""Crossings of the rest length xi = 0 in the root variable (power_flight._root_crossing, eq. (R) of
-power_series) against the independent mpmath reference (tests/power_reference.py).
+"""Crossings of the rest length xi = 0 in the root variable (series.flight._root_crossing, eq. (R) of
+series.taylor) against the independent mpmath reference (tests/power_reference.py).
 
 One crossing from (xi0, xi') moving towards 0 (or from xi = 0): the solver's duration T, change of
 xi and of xi' must be the reference's state at time T to rounding (a few ulps of the magnitudes

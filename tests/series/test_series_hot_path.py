@@ -1,4 +1,4 @@
-"""The hot path of the power-law spring (power_flight.short_flight): a flight from the floor as one
+"""The hot path of the power-law spring (series.flight.short_flight): a flight from the floor as one
 series step, with its root certified or a HANDOVER to the general stepper.
 
 * flights of the Hertz drop of benchmarks/bench_power.py that take the hot path (impacts 2.6e3 ..

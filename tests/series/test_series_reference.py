@@ -52,7 +52,7 @@ def test_drop_transient_flights_match_reference(rho, a, xi0):
     its first four flights, long ones through many crossings of xi = 0 among them (~70 time units,
     ~2e3 series steps), each from bounce's own float64 state, against the reference to 1e-14.  And the
     same drop of the stiff law a = 50, b = 1/2, whose spring is nearly free for |xi| < 0.45 and stiff beyond
-    (the disc fraction 2/a of power_series.disc_fraction: with the fixed 0.95 its second flight did not
+    (the disc fraction 2/a of springs.power.disc_fraction: with the fixed 0.95 its second flight did not
     end in 14 min); rho = 1e14 holds the ball above the floor, |xi_eq| = 0.49 < 1/2 (the power law's domain,
     bounce.springs.power: with rho = 1, |xi_eq| = 0.91, refused)."""
     gamma = mu = 0.01
@@ -72,7 +72,7 @@ def test_drop_transient_flights_match_reference(rho, a, xi0):
                                     PowerSpring(2.0, 0.25, 0.25)], ids=lambda s: f"rho{s.rho}_a{s.a}_b{s.b}")
 def test_flight_through_many_crossings_matches_reference(spring):
     """A flight of ~15 time units whose spring crosses its rest length xi = 0 3-5 times (the
-    crossings of power_flight for b > 0, b <= 1 and b > 1: root variable, windows as fallback), to 1e-14."""
+    crossings of series.flight for b > 0, b <= 1 and b > 1: root variable, windows as fallback), to 1e-14."""
     gamma, mu = 0.05, 0.05
     x, u, a = 0.0, 0.1, 0.3
     xi_eq = float(law_array(spring.rho, spring.a, spring.b, mu, gamma)[L_XI_EQ])
@@ -89,7 +89,7 @@ def test_long_flight_through_many_crossings_matches_reference():
     """A ~1000-long Hertz flight whose nearly undamped spring (gamma = 1e-5, mu = 1e-6) swings through
     its rest length ~45 times (~4e3 series steps): flight time and post-impact state to 1e-14, eta
     relative to the swing W = |xi_eq| (eta sweeps [0, 2W] over and over; it is summed from steps of
-    that size).  The bound of power_flight's docstring for long flights: the energy's random walk of
+    that size).  The bound of series.flight's docstring for long flights: the energy's random walk of
     roundings (~8e-17 per crossing) becomes a phase error ~1.5e-17 n^(3/2) (rms) after n crossings through
     the energy-dependent frequency, 5e-15 here (measured 2.6e-15; 2.3e-14 when the compensation of
     eta, xi' was not folded into the state the series is taken at).  The reference at 30 digits (it

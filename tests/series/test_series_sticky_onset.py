@@ -1,7 +1,7 @@
 """A Hertz sticky onset reached from a flight (eq. sticky-condition: x = x' = x'' = 0, x''' < 0).
 
 Such a landing is not generic (two conditions on the flight), so it is constructed backwards, as
-tests/test_events.py does for the linear law: at the onset the lower mass is on the floor at rest
+tests/exact/test_events.py does for the linear law: at the onset the lower mass is on the floor at rest
 (x = x' = 0) with the spring at xi_c < 0 and xi' = v chosen so that the floor force vanishes,
 
     F = f(xi_c) + 2 mu v |xi_c|^b - gamma = 0,   i.e.  v = (gamma + rho |xi_c|^(a+1)) / (2 mu |xi_c|^b),
@@ -37,7 +37,8 @@ from mpmath import mp, mpf
 import power_reference as PR
 
 from bounce import Deviations, Parameters
-from bounce.exact.events import GRAZING, IMPACT, contact_window
+from bounce.kinds import GRAZING, IMPACT
+from bounce.exact.events import contact_window
 from bounce.series.events import simulate_power
 from bounce.series.flight import floor_force
 from bounce.series.taylor import L_XI_EQ, law_array
@@ -175,7 +176,7 @@ def test_references_two_precisions_agree():
 
 def test_sticky_reference_agrees_with_the_time_stepped_one():
     """On the xi < 0 side the s = sqrt|xi| reference meets tests/power_reference.reference_sticky
-    (Taylor steps in t, the reference of tests/test_power_sticky.py): from the onset of g0.1_mu1
+    (Taylor steps in t, the reference of tests/series/test_series_sticky.py): from the onset of g0.1_mu1
     to half-way to xi = 0 in s (t = 0.155), xi and xi' agree to 10^(2 - DPS) relative (measured:
     3e-23 in xi, 0 in xi')."""
     gamma, mu, T, law, xi_eq, flight, d = built("g0.1_mu1")

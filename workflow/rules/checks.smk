@@ -61,7 +61,7 @@ rule report:
     input:
         nc=[f"results/checks/{name}.nc" for name in CHECKS],
         png=[f"results/checks/fig-{name}.png" for name in CHECKS],
-        # every other figure, linked with the paper's figure it reproduces (bounce.figures.pipeline_figures)
+        # every other figure, linked with the paper's figure it reproduces (bounce.pipeline.catalogue.pipeline_figures)
         figures=[f["path"] for f in PIPELINE_FIGURES],
     output:
         md="results/report/validation.md",

@@ -1,8 +1,9 @@
 """Shared helpers: config slices as JSON, the sticky runs, and the registries of the package
-(figures: bounce.figures.FIGURES; studies: bounce.studies.STUDIES; checks: bounce.checks) read here,
+(figures: bounce.figures.FIGURES and bounce.pipeline.catalogue; studies: bounce.studies.registry; checks: bounce.checks) read here,
 so that no name is listed twice."""
 
-from bounce.figures import figure_table, pipeline_figures, sticky_dataset
+from bounce.paths import dataset, sticky_dataset
+from bounce.pipeline.catalogue import figure_table, pipeline_figures
 from bounce.studies import study_inputs, study_slices
 
 
@@ -12,7 +13,7 @@ def as_json(obj):
 
 
 def sticky_file(eps):
-    return f"results/data/{sticky_dataset(eps)}.nc"
+    return dataset("data", sticky_dataset(eps))
 
 
 def sticky_run_spec(w):
@@ -36,7 +37,7 @@ PIPELINE_FIGURES = pipeline_figures(config)
 
 CHECKS = sorted(config.get("checks", {}))
 
-# speed-vs-accuracy studies: name -> config slice (the registry bounce.studies.STUDIES)
+# speed-vs-accuracy studies: name -> config slice (the registry bounce.studies.registry)
 STUDIES = study_slices(config)
 STUDY_INPUTS = study_inputs(config)
 

@@ -23,7 +23,8 @@ from numba import njit
 from scipy.optimize import minimize
 
 from . import reference
-from ..exact.events import IMPACT, TANGENT_ACC, TANGENT_JERK, energy_excess, rounding_level
+from ..kinds import IMPACT
+from ..exact.events import TANGENT_ACC, TANGENT_JERK, energy_excess, rounding_level
 from ..exact.flight import gap
 from ..model import Deviations
 from ..exact.oscillator import make_oscillator

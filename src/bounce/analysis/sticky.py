@@ -11,10 +11,10 @@ import xarray as xr
 
 from .fitting import fit_loglog  # noqa: F401 (one fit; bounce.figures.sticky imports it from here)
 from ..io import sample_dataset
+from ..kinds import DETACH, IMPACT, STICKY_START
 from ..model import Parameters, State
 from ..simulate import simulate
 
-IMPACT, DETACH = 0, 3
 
 
 def sticky_duration(gamma: float, mu: float, ydot0: float = -0.1) -> float:
@@ -54,7 +54,7 @@ def convergence(reference: xr.Dataset, runs: list[xr.Dataset], samples: int) -> 
     O(h^2); the report checks it against a grid twice as fine).
     """
     kinds = reference["kind"].values
-    if kinds.size < 2 or kinds[0] != 2 or kinds[1] != DETACH:
+    if kinds.size < 2 or kinds[0] != STICKY_START or kinds[1] != DETACH:
         raise ValueError("the eps = 0 reference must start sticky at t = 0 and detach")
     t_c = float(reference["t"].values[1])
     grid = np.linspace(0.0, t_c, int(samples))

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import PurePosixPath
 
 from .._registry import discover
+from ..paths import sticky_dataset
 from .base import Check
 
 #: the named group of datasets a claim group may list in its ``inputs``: the eps = 0 run and the eps_convergence
@@ -26,8 +27,6 @@ def input_files(name: str, config: dict, data: str = "results/data", sweeps: str
     scene is results/data/<scene>.nc, ``sticky-runs`` the sticky runs, a sweep its gathered file
     results/sweeps/<sweep>.nc), then its experiments (results/data/checks/<name>/<experiment>.nc, rule
     check_experiment).  The rule check (workflow/rules/checks.smk) and ``python -m bounce check`` use it."""
-    from ..figures import sticky_dataset
-
     data, sweeps = PurePosixPath(data), PurePosixPath(sweeps)
     files = []
     for item in config["checks"][name]["inputs"]:

@@ -38,7 +38,7 @@ Every experiment is in the graph (the probe budget).  A claim group simulates no
   declares (so a config edit reruns exactly it), and read by ``measure`` like any other input;
 * inside a claim only *probes* remain: constructed states followed for at most :data:`PROBE_EVENTS`
   events per :func:`bounce.simulate.simulate` call (a classifier probe, one sticky phase, the restart of
-  a thinned record).  tests/test_claims.py::test_probe_budget counts the events of every call of every
+  a thinned record).  tests/checks/test_claims.py::test_probe_budget counts the events of every call of every
   group on small inputs and fails above the budget.
 
 ``measure`` tells its inputs apart with :func:`split_inputs`: scenes in declared order, the others by the

@@ -54,7 +54,8 @@ from mpmath import mp, mpf
 
 from ..analysis import reference
 from ..analysis.anomalies import binned_tail_exponent, construct_contact, monte_carlo_summary, sample_parameters
-from ..exact.events import GRAZING, IMPACT, KIND_NAMES, STICKY_START, contact_window
+from ..kinds import GRAZING, IMPACT, KIND_NAMES, STICKY_START
+from ..exact.events import contact_window
 from ..model import Deviations, Parameters
 from ..simulate import simulate
 from ..analysis.theory import E_min, contact_derivatives, min_sticky_energy, sticky_onset
@@ -395,7 +396,7 @@ def constructed_sticky_onsets(m, spec) -> Verdict:
         tr = simulate(Parameters(g, mu), s, max_events=1)
         msg += (f"; there the exact speed of the rounded start state is |x'| = {abs(float(ex.u)):.3g} < v_tol = "
                 f"{v_tol:.3g}, but the simulator's contact speed is {abs(tr.xdot[0]):.3g} (a regression of this kind "
-                f"once came from the Newton polish of flight.first_contact; see tests/test_flight.py)")
+                f"once came from the Newton polish of flight.first_contact; see tests/exact/test_flight.py)")
     return Verdict(
         claim="A state backward-evolved from a sticky onset reaches the floor in a sticky event at t = T",
         paper_ref="eqs. sticky-condition, sticky-cond-Y; sec. 7 (states on S reached by T^-)",

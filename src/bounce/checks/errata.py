@@ -28,7 +28,7 @@ from scipy.integrate import simpson
 from scipy.optimize import brentq, minimize
 
 from ..analysis import reference
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..analysis.fitting import richardson_derivative
 from ..model import Deviations, Parameters, State
 from ..exact.oscillator import fundamental, make_oscillator

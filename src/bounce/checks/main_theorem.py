@@ -62,48 +62,16 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
 from ..analysis.fitting import fit_limit, log_select, transient_length
-from ..model import Deviations, Parameters
-from ..simulate import simulate
 from ..analysis import theory
+from ..analysis.observables import QUANTITIES, QUANTITY_CLAIMS, QUANTITY_LABELS, dataset_series, series_quantities
 from ..analysis.theory import contact_derivatives, correction_exponent
 from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, split_inputs
 
 NAME = "main-theorem"
 
-QUANTITIES = ("tau", "xdot", "ratio", "xddot", "xdddot", "map")
-QUANTITY_LABELS = {
-    "tau": r"$n\tau_n\mu/3$",
-    "xdot": r"$n\dot X_n\mu/(3\gamma)$",
-    "ratio": r"$\dot X_n/(\gamma\tau_n)$",
-    "xddot": r"$\ddot X_n/(-2\gamma)$",
-    "xdddot": r"$\dddot X_n/(2\mu\gamma)$",
-    "map": r"$\frac{\dot X_n-\dot X_{n+1}}{\dot X_n^2}\frac{3\gamma}{\mu}$",
-}
-QUANTITY_CLAIMS = {
-    "tau": ("tau_n ~ 3/(mu n)", "Theorem main_thm"),
-    "xdot": ("Xdot_n ~ 3 gamma/(mu n)", "proof of Theorem main_thm (Lemma Giorgio's)"),
-    "ratio": ("Xdot_n / tau_n -> gamma", "proof of Theorem main_thm, last display"),
-    "xddot": ("Xddot_n -> -2 gamma", "proof of Theorem main_thm"),
-    "xdddot": ("Xdddot_n -> 2 mu gamma", "proof of Theorem main_thm, eq. limitex3dot"),
-    "map": ("(Xdot_n - Xdot_{n+1})/Xdot_n^2 -> mu/(3 gamma)", "eq. restituzione (eq. mappa, alpha_n)"),
-}
 
 # --------------------------------------------------------------------------- the quantities
-
-def scaled_quantities(n, tau_n, xdot_n, xdot_next, xidot_n, eta_n, gamma, mu) -> dict:
-    """The six q_n (all -> 1 by the theorem) from per-impact arrays in paper indexing."""
-    xdd, xddd = contact_derivatives(xidot_n, eta_n, gamma, mu)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return {
-            "tau": n * tau_n * mu / 3.0,
-            "xdot": n * xdot_n * mu / (3.0 * gamma),
-            "ratio": xdot_n / (gamma * tau_n),
-            "xddot": xdd / (-2.0 * gamma),
-            "xdddot": xddd / (2.0 * mu * gamma),
-            "map": (xdot_n - xdot_next) / xdot_n**2 * (3.0 * gamma / mu),
-        }
 
 
 def printed_coefficient(tau_n, xdot_n, xidot_n, eta_n, gamma, mu):
@@ -116,53 +84,6 @@ def printed_coefficient(tau_n, xdot_n, xidot_n, eta_n, gamma, mu):
     xdd, xddd = contact_derivatives(xidot_n, eta_n, gamma, mu)
     return (xdot_n / tau_n + 0.5 * xdd) / (xddd * tau_n)
 
-
-def trajectory_series(traj) -> dict:
-    """Per-impact arrays (paper indexing n = 1 .. len - 1) of a complete trajectory."""
-    p = traj.params
-    k = np.arange(len(traj) - 1)  # event k = impact n = k + 1; needs events k and k + 1
-    impacts = (traj.kind[:-1] == IMPACT) & (traj.kind[1:] == IMPACT)
-    k = k[impacts]
-    return {
-        "n": (k + 1).astype(np.float64), "t": traj.t[k], "tau": traj.tau[k + 1], "xdot": traj.xdot[k],
-        "xdot_next": traj.xdot[k + 1], "xidot": traj.xidot[k], "eta": traj.eta[k],
-        "gamma": p.gamma, "mu": p.mu,
-    }
-
-
-def dataset_series(ds: xr.Dataset) -> dict:
-    """Per-impact arrays at the kept events of a (possibly thinned) scene dataset.
-
-    tau_n and Xdot_{n+1} need event k + 1; when it was not kept (a gap of a thinned file), one
-    event is simulated from the stored state after event k (exact: the core's own variables).
-    """
-    gamma, mu = float(ds.attrs["gamma"]), float(ds.attrs["mu"])
-    params = Parameters(gamma, mu)
-    ev = ds["event"].values.astype(np.int64) if "event" in ds.coords else np.arange(ds.sizes["event"])
-    kind = ds["kind"].values
-    xdot, xidot, eta, tau, t = (ds[v].values for v in ("xdot", "xidot", "eta", "tau", "t"))
-    m = len(ev)
-    tau_next = np.full(m, np.nan)
-    xdot_next = np.full(m, np.nan)
-    ok = np.zeros(m, dtype=bool)
-    for i in range(m):
-        if kind[i] != IMPACT:
-            continue
-        if i + 1 < m and ev[i + 1] == ev[i] + 1:
-            if kind[i + 1] == IMPACT:
-                tau_next[i], xdot_next[i], ok[i] = tau[i + 1], xdot[i + 1], True
-        elif i + 1 < m and xdot[i] > 0.0:  # a gap of the thinned records (the last record ends the data)
-            r = simulate(params, Deviations(0.0, float(xdot[i]), float(xidot[i]), float(eta[i])), max_events=1)
-            if len(r) == 1 and r.kind[0] == IMPACT:
-                tau_next[i], xdot_next[i], ok[i] = r.tau[0], r.xdot[0], True
-    return {
-        "n": (ev[ok] + 1).astype(np.float64), "t": t[ok], "tau": tau_next[ok], "xdot": xdot[ok],
-        "xdot_next": xdot_next[ok], "xidot": xidot[ok], "eta": eta[ok], "gamma": gamma, "mu": mu,
-    }
-
-
-def series_quantities(s: dict) -> dict:
-    return scaled_quantities(s["n"], s["tau"], s["xdot"], s["xdot_next"], s["xidot"], s["eta"], s["gamma"], s["mu"])
 
 
 # --------------------------------------------------------------------------- run

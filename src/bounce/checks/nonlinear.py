@@ -40,7 +40,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..analysis.fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
 from ..exact.flight import EPS
 from ..analysis.theory import nonlin_alpha_limit, nonlin_energy, nonlin_equilibrium_xi, nonlin_sticky_scaling

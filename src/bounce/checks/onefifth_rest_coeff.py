@@ -33,7 +33,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..analysis.fitting import fit_loglog, scaled_lstsq
 from ..analysis.theory import nonlin_alpha_limit, onefifth_U, rest_coefficient_function_of_mu
 from .base import BEYOND, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, variable

@@ -40,7 +40,8 @@ from mpmath import findroot, mp, mpf, tan
 
 from ..analysis import reference
 from ..analysis import theory
-from ..exact.events import DETACH, STICKY_ONSET, STICKY_START, contact_window
+from ..kinds import DETACH, IMPACT, STICKY_START
+from ..exact.events import STICKY_ONSET, contact_window
 from ..model import Parameters, State
 from ..simulate import simulate
 from .base import BEYOND, PAPER, Check, Verdict, judge, recorded, variable
@@ -164,7 +165,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig, axs = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
     ax = axs[0]
     t, kind = ds["conservative_times"].values, ds["conservative_kind"].values
-    for k, (lab, c, mk) in {0: ("impact", "C0", "."), 2: ("sticky start", "C3", "v"), 3: ("detach", "C2", "^")}.items():
+    for k, (lab, c, mk) in {IMPACT: ("impact", "C0", "."), STICKY_START: ("sticky start", "C3", "v"), DETACH: ("detach", "C2", "^")}.items():
         sel = kind == k
         ax.plot(t[sel], np.arange(t.size)[sel] + 1, mk, color=c, ms=5, label=lab)
     P = ds.attrs["period"]

@@ -38,7 +38,8 @@ import xarray as xr
 from mpmath import mp
 
 from ..analysis.anomalies import construct_contact, minimum_sticky_energy
-from ..exact.events import DETACH, GRAZING, KIND_NAMES, STICKY_START, XN_ULPS, contact_window
+from ..kinds import DETACH, GRAZING, KIND_NAMES, STICKY_START
+from ..exact.events import XN_ULPS, contact_window
 from ..exact.flight import EPS
 from ..model import Deviations, Parameters, State
 from ..sampling import sample_trajectory
@@ -324,7 +325,7 @@ def duration_bounded_below(m, spec) -> Verdict:
                  "approached as alpha_s -> inf; infinite for alpha_s < eps*",
         measured="smallest durations " + ", ".join(f"{v:.6g}" for v in min_dur) + " vs pi/omega_s "
                  + ", ".join(f"{v:.6g}" for v in d.inf_bound) + f"; decreasing in alpha_s: {monotone}",
-        tolerance="1e-12 relative (detach times are exact to rounding, tests/test_sticky.py)",
+        tolerance="1e-12 relative (detach times are exact to rounding, tests/exact/test_sticky.py)",
         verdict=judge(ok and bool(np.all(min_dur > 0))))
 
 

@@ -45,7 +45,7 @@ recorded states carry rounding, an unbiased walk of ~1 eps E per impact plus a
 measured bias of +0.03 eps E per impact (psi(0) = 6, gamma = 0.01: +8.3e-13 after
 2e6 impacts, growing linearly, i.e. ~4e-12 after 1e7), traced against mpmath to the rounding of
 the spring state in the flight map, not to the contact time (whose residual has
-no significant bias) nor to c^2 + S^2 (no bias).  tests/test_edges.py bounds it.
+no significant bias) nor to c^2 + S^2 (no bias).  tests/exact/test_edges.py bounds it.
 """
 
 from __future__ import annotations
@@ -55,6 +55,10 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model import check_supported
+from ..trajectory import run_into_trajectory, stop_rules
+from ..kinds import (DETACH, GRAZING, IMPACT, STICKY_START, STOP_ENERGY, STOP_EVENTS, STOP_FAILED,
+                     STOP_STICKY_FOREVER, STOP_TIME)
 from .flight import (
     EPS,
     FAILED,
@@ -67,16 +71,9 @@ from .flight import (
     oscillator_at,
     xi_derivatives,
 )
-from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO
+from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO, make_oscillator
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight
 
-# event kinds (netCDF flag_values)
-IMPACT, GRAZING, STICKY_START, DETACH = 0, 1, 2, 3
-KIND_NAMES = ("impact", "grazing", "sticky_start", "detach")
-
-# why the loop ended
-STOP_EVENTS, STOP_TIME, STOP_ENERGY, STOP_STICKY_FOREVER, STOP_FAILED = range(5)
-STOP_NAMES = ("max_events", "t_max", "energy", "sticky_forever", "root_finder_failed")
 
 SQRT2 = math.sqrt(2.0)
 #: cap on the Newton steps of :func:`_sticky_modes`: from s = 0 each step gains ~1/L while the fast mode
@@ -197,7 +194,7 @@ def _sticky_modes(a, eta, gamma, t_limit, sparams):
     whose terms (2 mu xi' and 2 mu^2 xi') exceed F by up to 1e16 at mu = 1e8.  Error bound: F(s) to a few
     ulps of |P| e^{-l s} (1 + l s) + |Q| e^{-L s} (1 + L s) + 2 gamma (the factors: the rounding of the
     exponents), plus the sensitivity of A and B to the half ulps of a and eta (the input's own); the detach
-    time to that over F' there (1e-12 relative against mpmath in tests/test_edges.py).  A maximum within
+    time to that over F' there (1e-12 relative against mpmath in tests/exact/test_edges.py).  A maximum within
     8 ulps of its terms counts as F < 0 (a tangency, not a crossing: approximation at the rounding level,
     as for contacts).
     """
@@ -421,3 +418,19 @@ def run_events(
         carry[C_STICKY] = 1.0 if sticky else 0.0
         carry[C_RESUME] = 1.0
     return n, stop, t_hi + t_lo
+
+
+def simulate_linear(params, initial, max_events: int = 1000, t_max: float = math.inf, energy_stop: float = 0.0):
+    """Simulate the paper's linear spring from ``initial`` (a :class:`bounce.model.State`, or
+    :class:`bounce.model.Deviations`): validated stop rules and supported domain
+    (:func:`bounce.model.check_supported`), the oscillator tables of mu and mu/sqrt(2) (flights, sticky
+    phases), then :func:`run_events` into a :class:`bounce.trajectory.Trajectory`."""
+    max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
+    start = initial.deviations(params)
+    check_supported(params, start)
+    params_arr, coefs = make_oscillator(params.mu)
+    sparams, scoefs = make_oscillator(params.mu / SQRT2)
+    return run_into_trajectory(
+        lambda *buffers: run_events(start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs,
+                                    sparams, scoefs, max_events, t_max, energy_stop, *buffers),
+        params, initial, (max_events, t_max, energy_stop), "root finder")

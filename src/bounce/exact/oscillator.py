@@ -40,7 +40,7 @@ e.g. (over-damped, slow and fast rates ``lam_slow = 1/(mu + kappa)``,
 
 sums of terms whose cancellation is bounded by a factor ~2 for rho t > SERIES_Q,
 so the small parts keep a few ulps relative to themselves for every mu > 1
-(checked against mpmath for mu up to 1e8 in tests/test_edges.py).  For mu <= 1
+(checked against mpmath for mu up to 1e8 in tests/exact/test_edges.py).  For mu <= 1
 (rho = 1, t > 2, c decaying at rate >= mu or oscillating) 1 - c is formed by
 subtraction to a few ulps of 1, which is what eq. (F) needs.  Nothing overflows
 for long flights and everything is continuous across mu = 1.

@@ -5,8 +5,8 @@ validated config (files named relative to ``results/`` without ``.nc``: ``data/<
 ``checks/<claim group>``, ``methods/<study>``), and which figure of the paper it reproduces, with
 that figure's caption (:class:`Caption`; the report prints it next to the link).  The figures of
 the other stages are beyond the paper; their captions are the study's ``caption``
-(:data:`bounce.studies.STUDIES`) and the sweep's ``title`` (:mod:`bounce.sweeps`), and :func:`pipeline_figures`
-lists them all.
+(:mod:`bounce.studies`) and the sweep's ``title`` (:mod:`bounce.sweeps`), and
+:func:`bounce.pipeline.catalogue.pipeline_figures` lists them all.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
+from ..paths import sticky_dataset
 from . import asymptotics, contacts, sticky, trajectories
 
 
@@ -44,11 +45,6 @@ class Figure:
     inputs: Callable[[dict], list]
     spec: Callable[[dict], dict]
     caption: Caption
-
-
-def sticky_dataset(eps: float) -> str:
-    """Dataset name of one eps run of eq. sticky-ic (tag: 0, 0.001, 1e-06, ...)."""
-    return f"sticky/eps{float(eps):g}"
 
 
 def _scene_figure(draw, key: str, *extra: str, caption: Caption) -> Figure:
@@ -113,24 +109,3 @@ FIGURES = {
     "asymptotic-laws": Figure(asymptotics.asymptotic_laws, _ASYMPTOTIC, _NONE, _beyond(
         "n tau_n mu/3 and n Xdot_n mu/(3 gamma) to 1e6 impacts: the laws of Theorem main_thm approached.")),
 }
-
-def pipeline_figures(config: dict) -> list[dict]:
-    """Every figure the pipeline makes besides the claim groups' own: path of its PNG (from the working directory),
-    name, the paper's figure label it reproduces ("" = beyond the paper) and caption; in registry order."""
-    from ..studies import STUDIES
-    from ..sweeps import registry
-
-    out = [dict(path=f"results/figures/fig-{name}.png", name=name, paper=fig.caption.paper, caption=fig.caption.text)
-           for name, fig in FIGURES.items()]
-    out += [dict(path=f"results/methods/fig-{name}.png", name=name, paper="", caption=study.caption)
-            for name, study in STUDIES.items()]
-    sweeps = registry()
-    out += [dict(path=f"results/sweeps/fig-{name}.png", name=name, paper="", caption=sweeps[name].title)
-            for name in config.get("sweeps", {})]
-    return out
-
-
-def figure_table(config: dict) -> dict:
-    """name -> (input paths, spec) for the Snakefile; the spec carries the figure's ``label``."""
-    return {name: ([f"results/{f}.nc" for f in fig.inputs(config)], dict(fig.spec(config), label=name))
-            for name, fig in FIGURES.items()}

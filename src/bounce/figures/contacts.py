@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis import theory
+from ..kinds import IMPACT
 from .common import WIDTH, plt, save, tex_num
 
-IMPACT = 0
 
 
 def _impact_only(ds):

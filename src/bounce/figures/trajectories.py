@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..io import sample_dataset
+from ..kinds import DETACH, IMPACT, STICKY_START
 from .common import WIDTH, label_time, plt, save, tex_num
 
-IMPACT = 0
 
 
 def _curves(ds, times):
@@ -61,7 +61,6 @@ def rigid_fall(ds, spec, outputs) -> None:
     save(fig, outputs)
 
 
-STICKY_START, DETACHMENT = 2, 3
 
 
 def sticky_traj(datasets, spec, outputs) -> None:
@@ -76,14 +75,14 @@ def sticky_traj(datasets, spec, outputs) -> None:
     times = np.linspace(0.0, t1, 6000)
     fig, axes = plt.subplots(len(datasets), 1, figsize=(WIDTH, 1.75 * len(datasets) + 0.6), sharex=True)
     axes = np.atleast_1d(axes)
-    sticky = [ds for ds in datasets if np.any(ds["kind"].values == DETACHMENT)]
-    t_c = float(sticky[0]["t"].values[sticky[0]["kind"].values == DETACHMENT][0]) if sticky else None
+    sticky = [ds for ds in datasets if np.any(ds["kind"].values == DETACH)]
+    t_c = float(sticky[0]["t"].values[sticky[0]["kind"].values == DETACH][0]) if sticky else None
     for ax, ds in zip(axes, datasets):
         x, y = _curves(ds, times)
         ax.plot(times, y, color="C0", label=r"$y(t)$, upper mass")
         ax.plot(times, x, color="C1", label=r"$x(t)$, lower mass")
         t, kind = ds["t"].values, ds["kind"].values
-        dots = t[np.isin(kind, (IMPACT, STICKY_START, DETACHMENT)) & (t <= t1)]
+        dots = t[np.isin(kind, (IMPACT, STICKY_START, DETACH)) & (t <= t1)]
         ax.plot(dots, np.zeros_like(dots), "k.", ms=4, label="contacts (solid dots)", zorder=3)
         for start in np.flatnonzero(kind == STICKY_START):
             end = t[start + 1] if start + 1 < t.size else t1

@@ -90,3 +90,14 @@ class MethodSpec:
     def supports(self, params) -> bool:
         """Can this method simulate ``params.spring``?"""
         return self.needs.test(params.spring)
+
+
+def compile_exact_solver() -> None:
+    """Compile (or load from numba's cache) the exact solver's kernels and its dense output once, so that a
+    method's ``cpu_time`` never includes JIT compilation (contract rule 4)."""
+    from ..model import Parameters, State
+    from ..sampling import sample_trajectory
+    from ..simulate import simulate
+
+    tr = simulate(Parameters(0.01, 0.01), State.from_psi_xi(0.1, 0.0, 0.0, 0.0), max_events=3)
+    sample_trajectory(tr, np.array([0.5]))

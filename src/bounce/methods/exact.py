@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from .base import EXACT_SOLVER, MethodResult, MethodSpec

@@ -88,13 +88,14 @@ import time
 import numpy as np
 from numba import njit
 
-from ..exact.events import IMPACT, compensated_add
+from ..kinds import IMPACT
+from ..exact.events import compensated_add
 from ..exact.flight import EPS
 from ..model import InputError
 from ..sampling import sample_trajectory
 from ..simulate import simulate
 from ..analysis.theory import T_xi, rest_coefficient_function_of_mu, u_c
-from .base import MethodResult, MethodSpec
+from .base import MethodResult, MethodSpec, compile_exact_solver
 
 
 #: flights shorter than this times t end a collapsing run (the tail after them is below rounding)
@@ -232,14 +233,10 @@ def warm_up() -> None:
     so that ``cpu_time`` never includes JIT compilation (interface rule 4)."""
     if _WARM:
         return
-    from ..model import Parameters, State
-
     buf = np.empty(2)
     _rigid_kernel(CONSTANT, 0.5, 0.0, 0.0, 2.0, 0.01, 1.0, 0.1, 2, math.inf, buf, buf.copy(), buf.copy())
     _asymptotic_kernel(1e-3, 1.0, 0.01, 0.01, True, 2, math.inf, buf, buf.copy(), buf.copy())
-    p = Parameters(0.01, 0.01)
-    tr = simulate(p, State.from_psi_xi(0.1, 0.0, 0.0, 0.0), max_events=3)
-    sample_trajectory(tr, np.array([0.5]))
+    compile_exact_solver()
     _WARM["done"] = True
 
 

@@ -49,7 +49,7 @@ Failure detection (inside the method, from the integrator's own output only):
     by at most 2 over 100 flights once n > 100).
 ``budget``         process time over ``cpu_budget`` seconds (checked between calls).
 
-Measured on the drop gamma = mu = 0.01 from psi(0) = 6 (see tests/test_methods_integrators.py and
+Measured on the drop gamma = mu = 0.01 from psi(0) = 6 (see tests/methods/test_integrators.py and
 :mod:`bounce.studies.compare`): ~0.5 ms of CPU per impact whatever the tolerance (solve_ivp's per-call
 overhead dominates: ~3 steps and ~45 right-hand-side calls per impact at DOP853 rtol 1e-10; the checks
 above add ~10%); LSODA's interpolant does not pass through the restart state at loose tolerances, giving

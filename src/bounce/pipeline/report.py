@@ -127,7 +127,7 @@ def ordered_subjects(spec: dict) -> dict:
 
 
 def figure_entries(figures, report_dir) -> list[dict]:
-    """The pipeline's figures (``bounce.figures.pipeline_figures``) with their paths relative to the report."""
+    """The pipeline's figures (``bounce.pipeline.catalogue.pipeline_figures``) with their paths relative to the report."""
     return [dict(f, link=os.path.relpath(f["path"], report_dir)) for f in figures]
 
 
@@ -229,7 +229,7 @@ def to_html(reports, subjects, meta: dict, figures=()) -> str:
 
 def write(check_files, figure_files, out_md, out_html, subjects: dict, meta: dict, figures=()) -> None:
     """Write the markdown and HTML reports (each atomically); ``subjects``: config ``report.subjects`` (in the order
-    to list them, :func:`ordered_subjects`); ``figures``: :func:`bounce.figures.pipeline_figures`."""
+    to list them, :func:`ordered_subjects`); ``figures``: :func:`bounce.pipeline.catalogue.pipeline_figures`."""
     report_dir = Path(out_md).parent
     reports = load(check_files, figure_files, report_dir)
     check_subjects(reports, subjects)

@@ -52,7 +52,7 @@ def _check(args) -> None:
 
 def _check_experiment(args) -> None:
     """One long simulation of a claim group (``--experiment NAME``), from the config keys it declares."""
-    from .. import __version__
+    from .._version import __version__
     from ..checks import registry
     from ..io import git_info
 
@@ -65,7 +65,7 @@ def _check_experiment(args) -> None:
 
 def _report(args) -> None:
     """Gather every check into results/report/validation.{md,html}."""
-    from .. import __version__
+    from .._version import __version__
     from ..io import git_info
     from .report import ordered_subjects, write
 
@@ -76,14 +76,15 @@ def _report(args) -> None:
 
 
 def _study(args) -> None:
-    """One study of bounce.methods (registry: bounce.studies.STUDIES): its dataset, its timings, its figure.
+    """One study (registry: bounce.studies.registry): its dataset, its timings, its figure.
 
     ``--out NC TIMING_NC PNG PDF``: the CPU times go to TIMING_NC so that NC is byte-reproducible.
     """
     from ..io import split_timings
-    from ..studies import STUDIES
+    from ..studies import registry
 
-    build, plot = STUDIES[args.name].functions()
+    study = registry()[args.name]
+    build, plot = study.build, study.plot
     ds = build(args.spec)
     result, timings = split_timings(ds)
     write_netcdf(result, args.out[0])

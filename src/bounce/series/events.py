@@ -43,30 +43,15 @@ import math
 import numpy as np
 from numba import njit
 
-from ..exact.events import (
-    DETACH,
-    KIND_NAMES,
-    STICKY_START,
-    STOP_ENERGY,
-    STOP_EVENTS,
-    STOP_FAILED,
-    STOP_NAMES,
-    STOP_STICKY_FOREVER,
-    STOP_TIME,
-    contact,
-    compensated_add,
-    record_event,
-)
+from ..kinds import (DETACH, STICKY_START, STOP_ENERGY, STOP_EVENTS, STOP_FAILED, STOP_SLOW_CROSSING, STOP_STICKY_FOREVER, STOP_TIME)
+from ..exact.events import contact, compensated_add, record_event
 from ..exact.flight import FOUND, HORIZON, NEVER
 from .flight import (AT_REST, HANDOVER, SLOW_CROSSING, at_rest_is_sticky, first_contact, floor_force,
                            short_flight)
 from .sticky import sticky_phase
 from .taylor import DEGREE_LONG, L_GAMMA, L_XI_EQ, bregman, law_array
+from ..trajectory import run_into_trajectory, stop_rules
 
-#: a crossing of the rest length xi = 0 too slow to be computed to rounding (power_flight and
-#: power_sticky docstrings)
-STOP_SLOW_CROSSING = len(STOP_NAMES)
-POWER_STOP_NAMES = STOP_NAMES + ("slow_crossing",)
 
 
 @njit(cache=True)
@@ -82,7 +67,7 @@ def run_power_events(
 ):
     """Advance (x0, u, a, eta) from t = 0 and record every event, as :func:`bounce.exact.events.run_events`.
 
-    Returns ``(n_events, stop_reason, t_end)``; stop reasons index POWER_STOP_NAMES.
+    Returns ``(n_events, stop_reason, t_end)``; stop reasons index STOP_NAMES.
     """
     gamma = law[L_GAMMA]
     X = np.empty(DEGREE_LONG + 2)
@@ -135,7 +120,7 @@ def run_power_events(
                     stop = STOP_TIME if status == HORIZON else STOP_FAILED
                     break
             if status == AT_REST:
-                # after a tangential detach the mass stays (power_sticky docstring): a sticky start
+                # after a tangential detach the mass stays (series.sticky docstring): a sticky start
                 kind, tau = STICKY_START, 0.0
             else:
                 x0 = 0.0
@@ -158,13 +143,12 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     (:func:`bounce.model.check_supported`, refused up front otherwise).
 
     ``initial``: a :class:`bounce.model.State`, or :class:`bounce.model.Deviations` whose
-    eta is xi - xi_eq of this law.  Returns a :class:`bounce.simulate.Trajectory`
+    eta is xi - xi_eq of this law.  Returns a :class:`bounce.trajectory.Trajectory`
     with eta = xi - xi_eq and energy_excess = E - E_m of eq. ``nonlin-energy``.
     Exact to rounding: series flights with rigorous tails and a root finder that
     cannot skip an impact (:mod:`bounce.series.flight`).
     """
     from ..model import Deviations, InputError, Parameters, State, check_supported
-    from ..simulate import run_into_trajectory, stop_rules
     from ..springs import LINEAR
 
     max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
@@ -183,8 +167,8 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     check_supported(Parameters(params.gamma, params.mu, spring), Deviations(x, u, a, eta), t_max)
     return run_into_trajectory(
         lambda *buffers: run_power_events(x, u, a, eta, law, max_events, t_max, energy_stop, *buffers),
-        params, initial, (max_events, t_max, energy_stop), POWER_STOP_NAMES, "power-law root finder",
+        params, initial, (max_events, t_max, energy_stop), "power-law root finder",
         spring.attrs())
 
 
-__all__ = ["KIND_NAMES", "POWER_STOP_NAMES", "energy_excess", "run_power_events", "simulate_power"]
+__all__ = ["energy_excess", "run_power_events", "simulate_power"]

@@ -118,12 +118,12 @@ rounding of the float coefficients).  The frequency of the nonlinear spring depe
 crossings xi, xi' and eta are off by ~ c pi sigma_1 n^(3/2) / sqrt(3) relative to the swing W (rms;
 Hertz: 1.5e-17 n^(3/2), single values within ~3x of it), while tau, x and x' stay within a few
 ulps (psi is a parabola).  So 1e-14 holds to ~70 crossings in rms, single values within ~3x
-(tests/test_power_reference.py: 45 crossings, 4.3e-15 of W; over 40 independent realisations of that
+(tests/series/test_series_reference.py: 45 crossings, 4.3e-15 of W; over 40 independent realisations of that
 flight, gamma = 1e-5 (1 + 0.0137 k), rms 4.1e-15 and largest 1.1e-14, as before the comparison radius
 (3.97e-15, 1.19e-14); its longer steps without the exact v h: 4.9e-15, 1.6e-14, each step's
 rounding of v h being larger: ``python benchmarks/bench_power_long_flight.py --realisations 40``), and the ~2800 crossings of a 6e4-long Hertz flight end with xi, xi' ~2e-12 off
 (of W and of the speed at xi = 0; the estimate: 2.3e-12) and the energy (mu = 0) within 1e-14
-(tests/test_power_core.py: 8e-15).  This is the problem's conditioning, not the method's: a
+(tests/series/test_series_core.py: 8e-15).  This is the problem's conditioning, not the method's: a
 half-ulp rounding of xi at the start of that flight alone moves its end by up to
 c pi n (a+2) eps/2 (2e-13 for Hertz, n = 2800), and a march of independent roundings adds them
 like sqrt(n).  ``python benchmarks/bench_power_long_flight.py`` prints the error along such a

@@ -270,7 +270,7 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
                 break
             # tx ~ theta^(K+1), tv ~ theta^K, tp ~ theta^(K-1) (their denominators only grow as theta
             # shrinks): shrink to where the failing ones meet this theta's scales (which shrink with
-            # theta too, hence the loop), by at least 2% and at most 10x per pass, as power_flight does
+            # theta too, hence the loop), by at least 2% and at most 10x per pass, as series.flight does
             fit = 1.0
             if tx > tol_x:
                 fit = min(fit, (tol_x / tx) ** (1.0 / (K + 1.0)))

@@ -34,8 +34,8 @@ or ``sticky_forever``), or the run reaches t_max, within a bounded amount of wor
 5. Phases of bounded work: the series steps are limited by the stiffness and the damping of the spring
    over the |xi| it can reach, X (the largest |xi_eq + eta| whose divergence fits in E - E_m,
    :meth:`bounce.springs.base.SpringLaw.longest_flight`), so a phase of length T costs ~T R with the rate
-   R = sqrt(f'(X')) + 2 mu g(X'), X' = (1 + d) X (the factor of the solver's Cauchy disc,
-   :func:`bounce.series.taylor.disc_fraction`).  Refused: min(T, t_max) R > WORK_MAX, with T the longest
+   R = sqrt(f'(X')) + 2 mu g(X'), X' = (1 + d) X (the factor of the series solver's Cauchy disc,
+   :func:`disc_fraction`).  Refused: min(T, t_max) R > WORK_MAX, with T the longest
    flight the energy allows (:func:`bounce.springs.base.flight_bound`; the energy never rises, so this
    holds for every later phase), naming mu (when its damping term makes the difference), else the initial
    state.  Measured on random laws and states (2 cores, load ~2): CPU <= 4e-5 s per unit of T R where the
@@ -57,6 +57,10 @@ from .base import XI_EQ_MAX, Parameter, Physics, SpringLaw
 
 #: largest exponents of the restoring force and the damping (domain 1)
 A_MAX = B_MAX = 50.0
+#: largest Cauchy disc radius of the series solver as a fraction of |xi0| (the singularity xi = 0 is at distance
+#: |xi0|): the step near xi = 0 is ~ theta d |xi0| / |xi'| and the majorant grows as (1 + d)^(a+1) with the law's
+#: fraction d = min(DISC, 2/a) (:func:`disc_fraction`).
+DISC = 0.95
 #: largest m^2/k of the sticky spring near equilibrium (domain 4)
 OVERDAMPING_MAX = 1e3
 #: largest min(T, t_max) R, the work of a phase (domain 5)
@@ -85,6 +89,26 @@ def damping(xi, c):
 def potential(xi, c):
     """V(xi) = rho |xi|^(a+2) / (a+2), V' = f (eq. ``nonlin-energy``)."""
     return c[0] * abs(xi) ** (c[1] + 2.0) / (c[1] + 2.0)
+
+
+def disc_fraction(a: float) -> float:
+    """d = min(DISC, 2/a): the Cauchy disc |z - xi0| <= d |xi0| of the series solver's majorant
+    (:mod:`bounce.series.taylor`), kept with the law because its supported domain (domain 5) counts the
+    solver's steps with it.
+
+    Any 0 < d < 1 keeps the disc off xi = 0.  Where the restoring force limits the radius,
+    r_c^2 ~ d / ((1 + d)^(a+1) |xi0|^a r) is largest at d = 1/a, and the fixed DISC would shrink the steps
+    by ~(1.95 / (1 + 1/a))^((a+1)/2) / sqrt(0.95 a) (a = 24: ~500, a = 50: ~2e6: a drop of the a = 50 law
+    did not reach its second impact in 14 min); where the speed limits it, r_c ~ d |xi0| / |xi'| wants d large.  2/a
+    was the fastest of 1/a, 2/a, 4/a and DISC over a = 1.5 .. 24 (2e4 impacts of the drops from
+    xi = xi_eq and xi = 0, b = 0.5, gamma = mu = 0.01: against DISC within 10% for a = 2.5, 3, 1.2x faster
+    at a = 5, 1.6x at a = 8, 3.7x at a = 12, 160-200x at a = 24; ``python benchmarks/bench_power_core.py
+    --disc``).  The damping's factor
+    (1 + d)^b is left to DISC: with b large the damping is weak near equilibrium and a smaller d only
+    shortened the steps (b = 12: 4x slower at d = 2/b).  Laws with a <= 2/DISC (Hertz, the linear law)
+    keep DISC.
+    """
+    return min(DISC, 2.0 / a if a > 0.0 else math.inf)
 
 
 def _power(x: float, p: float) -> float:
@@ -160,8 +184,6 @@ class PowerSpring(SpringLaw):
 
     def rates(self, mu: float, reach: float) -> tuple[float, float]:
         """(sqrt(f'(X')), 2 mu g(X')), X' = (1 + d) ``reach``: the stiffness and damping rates of domain 5."""
-        from ..series.taylor import disc_fraction  # the solver's Cauchy disc
-
         x = (1.0 + disc_fraction(self.a)) * reach
         return math.sqrt(self.rho * (self.a + 1.0)) * _power(x, 0.5 * self.a), 2.0 * mu * _power(x, self.b)
 
@@ -183,4 +205,4 @@ class PowerSpring(SpringLaw):
         return name + r" $\rho=%s$, $a=%s$, $b=%s$" % (number(self.rho), number(self.a), number(self.b))
 
 
-__all__ = ["A_MAX", "B_MAX", "OVERDAMPING_MAX", "WORK_MAX", "PowerSpring"]
+__all__ = ["A_MAX", "B_MAX", "DISC", "OVERDAMPING_MAX", "WORK_MAX", "PowerSpring", "disc_fraction"]

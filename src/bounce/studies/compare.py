@@ -58,13 +58,14 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
+from ..methods import registry
+from ..methods.base import FAILURES, MethodResult
 from ..model import Deviations, Parameters, State
 from ..scenes import scene_initial, scene_parameters
 from ..simulate import simulate
 from ..springs import spring_from_attrs
-from ..methods import registry
-from ..methods.base import FAILURES, MethodResult
+from .base import Study, study_slice
 
 log = logging.getLogger(__name__)
 
@@ -772,3 +773,18 @@ def plot_stability_map(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig.suptitle("Stability map, %s:\nhow far each method gets and why it stops" % _scene_text(ds), fontsize=8)
     fig.tight_layout(rect=(0, (legend_in + 0.1) / fig.get_figheight(), 1, 1))
     save(fig, outputs)
+
+
+STUDIES = (
+    Study("work-precision", work_precision, plot_work_precision, lambda c: study_slice(c["methods"], "work_precision"),
+          timed=True, caption=("Work-precision of general-purpose methods (solve_ivp, penalty DEM, Moreau-Jean, heyoka)"
+                               " on the fig. rigid-fall drop.")),
+    Study("stability-map", stability_map, plot_stability_map, lambda c: study_slice(c["methods"], "stability_map"),
+          timed=True, caption="Where each general-purpose method stops on the fig. rigid-fall drop, and why."),
+    Study("work-precision-hertz", work_precision, plot_work_precision,
+          lambda c: study_slice(c["methods"], "work_precision", "work_precision_hertz"), timed=True,
+          caption="Work-precision of heyoka against bounce's power-law solver on the Hertz drop (a = b = 1/2)."),
+    Study("stability-map-hertz", stability_map, plot_stability_map,
+          lambda c: study_slice(c["methods"], "stability_map", "stability_map_hertz"), timed=True,
+          caption="Where heyoka stops on the Hertz drop (a = b = 1/2), and why."),
+)

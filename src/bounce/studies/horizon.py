@@ -51,6 +51,8 @@ import time
 import numpy as np
 import xarray as xr
 
+from .base import Study
+
 EPS64 = 2.0**-52
 
 
@@ -335,8 +337,9 @@ PRECISIONS = ("float64", "longdouble", "mp_low")
 
 
 def _float64_run(gamma, mu, start, n):
-    from bounce import Parameters, simulate
-    from bounce.exact.events import IMPACT
+    from ..model import Parameters
+    from ..simulate import simulate
+    from ..kinds import IMPACT
 
     tr = simulate(Parameters(gamma, mu), start, max_events=int(n))
     ok = tr.kind == IMPACT
@@ -357,7 +360,7 @@ def horizon_dataset(spec: dict) -> xr.Dataset:
          "regimes": {"chaotic": {"gamma": 0.01, "mu": 0.01, "psi0": 6.0, "n_mp": 120, "n_long": 20000}, ...},
          "statistic_at": [1000, 10000, 20000]}
     """
-    from bounce import Deviations
+    from ..model import Deviations
 
     tol = float(spec["tol"])
     band = tuple(spec["fit_band"])
@@ -541,3 +544,8 @@ def plot_horizon(ds: xr.Dataset, spec: dict, outputs) -> None:
                  % (ds.attrs["dps"], tex_num(ds.attrs["tol"]), ds.attrs["dps_low"]), fontsize=8)
     fig.tight_layout()
     save(fig, outputs)
+
+
+STUDY = Study("horizon", horizon_dataset, plot_horizon, lambda c: c["reduced"]["horizon"],
+              caption=("Predictability horizon of the float64 solver against mpmath: the impact index up to which"
+                       " impact times agree, per damping regime."))

@@ -46,12 +46,14 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..analysis.theory import T_xi
+from ..kinds import IMPACT
+from ..methods import contact_switch, exact, rigid
 from ..model import Deviations, InputError, Parameters
+from ..paths import scene_file
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from ..analysis.theory import T_xi
-from ..methods import contact_switch, exact, rigid
+from .base import Study
 
 #: CPU ratios below this count as a tie, broken in favour of the exact solver
 TIE = 1.25
@@ -656,3 +658,23 @@ def plot_least_model(ds: xr.Dataset, spec: dict, outputs) -> None:
                  "top strip: cannot deliver the quantity or failed", fontsize=7)
     fig.tight_layout()
     save(fig, outputs)
+
+
+def _least_model_scenes(config: dict) -> list:
+    return list(config["reduced"]["least_model"]["scenes"])
+
+
+def _least_model_slice(config: dict) -> dict:
+    """The least-model settings plus the specs and datasets of the scenes it names (validated to exist)."""
+    lm = config["reduced"]["least_model"]
+    return dict(lm, scene_specs={name: config["scenes"][name] for name in lm["scenes"]},
+                scene_files={name: scene_file(name) for name in lm["scenes"]})
+
+
+STUDIES = (
+    Study("reduced-vs-dimer", reduced_vs_dimer, plot_reduced_vs_dimer, lambda c: c["reduced"]["vs_dimer"],
+          caption=("Rigid-ball models (constant r, eq. onefifth-rest-coeff, eq. our-r, time of contact) against the"
+                   " dimer on the paper's drops.")),
+    Study("least-model", least_model, plot_least_model, _least_model_slice, scenes=_least_model_scenes, timed=True,
+          caption="The cheapest model meeting an explicit tolerance on each scene's quantity of interest."),
+)

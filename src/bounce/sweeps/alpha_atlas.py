@@ -27,7 +27,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..analysis.fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
 from ..model import Parameters, State
 from ..simulate import simulate

@@ -3,15 +3,15 @@
 For every cell (mu, gamma) of a log-spaced grid, the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and, for each q_n of the check ``main-theorem``
 (n tau_n mu/3 of Theorem main_thm, n Xdot_n mu/(3 gamma) via Lemma Giorgio's, and the other
-limits of its proof), the limit L of q_n is fitted with its error and decay exponent (:func:`bounce.checks.main_theorem.fit_limit`: corrections
+limits of its proof), the limit L of q_n is fitted with its error and decay exponent (:func:`bounce.analysis.fitting.fit_limit`: corrections
 of the map eq. restituzione plus the sticky spring's relaxation; the fit's error is the
 largest change of L under window and model variants).  The transient is the first n after
-which |q_n - 1| < ``transient`` for good (:func:`bounce.checks.main_theorem.transient_length`).
+which |q_n - 1| < ``transient`` for good (:func:`bounce.analysis.fitting.transient_length`).
 The theorem predicts L = 1 in every cell; a NaN limit means no fit window of a decade
 after the transient within ``events`` (slow over-damped relaxation, n^{-3 lam/mu}).
 
 The check ``main-theorem`` judges its atlas claims on this gathered file (a declared input, config
-``checks.main-theorem.inputs``); the quantities are the check's, imported, not re-coded.
+``checks.main-theorem.inputs``); the quantities are defined once, in :mod:`bounce.analysis.observables`.
 """
 
 from __future__ import annotations
@@ -21,21 +21,16 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..checks.main_theorem import QUANTITIES, QUANTITY_CLAIMS, series_quantities, trajectory_series
+from ..analysis.observables import QUANTITIES, QUANTITY_CLAIMS, series_quantities, trajectory_series
 from ..analysis.fitting import fit_limit, transient_length
 from ..model import Parameters, State
 from ..simulate import simulate
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, axis, log_edges
 
 NAME = "asymptotic-atlas"
 QUANTITY_LABELS = {q: QUANTITY_CLAIMS[q][0] for q in QUANTITIES}
 FIT_KEYS = ("limit", "limit_err", "exponent", "exponent_err")
 
-
-def axis(spec: dict) -> np.ndarray:
-    """A log-spaced axis {min, max, n} (n = 1: just min)."""
-    n = int(spec["n"])
-    return np.geomspace(float(spec["min"]), float(spec["max"]), n) if n > 1 else np.array([float(spec["min"])])
 
 
 def size(spec: dict) -> int:
@@ -100,13 +95,6 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     return out
 
 
-def _log_edges(v: np.ndarray) -> np.ndarray:
-    """Cell edges of a log-spaced axis: geometric midpoints, the ends mirrored (a decade wide if one value)."""
-    if v.size == 1:
-        return np.array([v[0] / 10**0.5, v[0] * 10**0.5])
-    mid = np.sqrt(v[1:] * v[:-1])
-    return np.concatenate([[v[0] ** 2 / mid[0]], mid, [v[-1] ** 2 / mid[-1]]])
-
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """|L - 1| of both constants and the transient length of n tau_n mu / 3 over (mu, gamma)."""
@@ -128,7 +116,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         finite = z[np.isfinite(z)]
         norm = LogNorm(vmin=max(finite.min(), 1e-16), vmax=max(finite.max(), 2e-16)) if finite.size else None
         ax.set_facecolor("0.85")  # grey: not determined (no fit window / never settled)
-        mesh = ax.pcolormesh(_log_edges(gamma), _log_edges(mu), z, shading="flat", cmap=cmap, norm=norm)
+        mesh = ax.pcolormesh(log_edges(gamma), log_edges(mu), z, shading="flat", cmap=cmap, norm=norm)
         fig.colorbar(mesh, ax=ax, shrink=0.9)
         ax.set(xscale="log", yscale="log", xlabel=r"$\gamma$", title=title)
         ax.grid(False)

@@ -17,7 +17,7 @@ A sweep module in ``bounce.sweeps`` defines ``SWEEP = Sweep(...)``:
 
 An item's result depends on nothing but the spec and its index, so the gathered file is
 the same bytes whatever the number of shards, workers or machines (checked in
-tests/test_sweeps.py and tests/test_slurm.py).  The Snakemake rules
+tests/sweeps/test_sweeps.py and tests/pipeline/test_slurm.py).  The Snakemake rules
 (``workflow/rules/sweeps.smk``) run one job per shard and one gather job.
 """
 
@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 import xarray as xr
 
-from .. import __version__
+from .._version import __version__
 from ..model import InputError
 
 ITEM = "item"
@@ -80,18 +80,12 @@ def combine(parts: list[dict], variables: dict) -> dict:
     return out
 
 
-def _compute_batch(sweep_name: str, spec: dict, inputs: dict) -> dict:
-    from . import registry  # in the worker process
-
-    return registry()[sweep_name].compute(spec, inputs)
-
-
 def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, progress: bool | None = None) -> dict:
     """``sweep.compute`` over ``items`` on ``workers`` processes, in batches, with a progress bar.
 
     The first batch runs in this process (compiling numba's kernels into its on-disk cache
     once), the others in spawned processes with one BLAS thread each (:data:`WORKER_ENV`);
-    an item's numbers do not depend on which process ran it (tests/test_sweeps.py).  ``progress``: a tqdm bar
+    an item's numbers do not depend on which process ran it (tests/sweeps/test_sweeps.py).  ``progress``: a tqdm bar
     on stderr (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
     """
     from tqdm import tqdm
@@ -113,7 +107,7 @@ def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, pro
         if len(bounds) > 1:
             with ProcessPoolExecutor(max_workers=max(workers, 1),
                                      mp_context=multiprocessing.get_context("spawn")) as pool:
-                futures = {pool.submit(_compute_batch, sweep.name, spec, _slice(inputs, lo, hi)): i
+                futures = {pool.submit(sweep.compute, spec, _slice(inputs, lo, hi)): i
                            for i, (lo, hi) in enumerate(bounds) if i > 0}
                 for future in as_completed(futures):
                     i = futures[future]
@@ -165,3 +159,19 @@ def gather(sweep: Sweep, spec: dict, shards: list[xr.Dataset]) -> xr.Dataset:
     arrays = combine([{k: ds[k].values for k in sweep.variables} for ds in shards], sweep.variables)
     ds = to_dataset(sweep, spec, arrays, items)
     return sweep.finish(ds, spec)
+
+
+# --------------------------------------------------------------------------- grids shared by the sweeps
+
+def axis(spec: dict) -> np.ndarray:
+    """A log-spaced axis {min, max, n} (n = 1: just min)."""
+    n = int(spec["n"])
+    return np.geomspace(float(spec["min"]), float(spec["max"]), n) if n > 1 else np.array([float(spec["min"])])
+
+
+def log_edges(v: np.ndarray) -> np.ndarray:
+    """Cell edges of a log-spaced axis: geometric midpoints, the ends mirrored (a decade wide if one value)."""
+    if v.size == 1:
+        return np.array([v[0] / 10**0.5, v[0] * 10**0.5])
+    mid = np.sqrt(v[1:] * v[:-1])
+    return np.concatenate([[v[0] ** 2 / mid[0]], mid, [v[-1] ** 2 / mid[-1]]])

@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.anomalies import _contact_scales, sample_initial
-from ..exact.events import KIND_NAMES
+from ..kinds import KIND_NAMES
 from ..model import Deviations, Parameters
 from ..exact.oscillator import make_oscillator
 from ..simulate import simulate

@@ -31,13 +31,12 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..exact.events import IMPACT
+from ..kinds import IMPACT
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..springs.power import PowerSpring
 from ..analysis.theory import nonlin_cycle_loss
-from .asymptotic_atlas import axis
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, axis
 
 NAME = "hertz-restitution"
 HERTZ = 0.5  # a = b = 1/2

@@ -7,8 +7,8 @@ u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The c
 and wrong in a band [u1, u2] around u_c.  This sweep maps that band over a log grid of mu
 (under-damped, mu < 1; one item per mu): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and r is measured per macroscopic bounce exactly as the
-check does (:func:`bounce.checks.restitution.double_impact` and
-:func:`~bounce.checks.restitution.our_r_test`, imported, not re-coded): r = ratio of successive
+check does (:func:`bounce.analysis.restitution.double_impact` and
+:func:`~bounce.analysis.restitution.our_r_test`, imported, not re-coded): r = ratio of successive
 landing speeds u = Xdot of the lower mass, over the initial run of double impacts and then over
 every impact.  It is judged on the dissipated fraction, err = (1 - r)/(1 - r_our) - 1 (where
 1 - r ~ 1e-4, a relative error of r itself says nothing).
@@ -27,13 +27,12 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..checks.restitution import double_impact, our_r_test
+from ..analysis.restitution import double_impact, our_r_test
 from ..io import to_dataset
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..analysis.theory import u_c
-from .asymptotic_atlas import _log_edges, axis
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, axis, log_edges
 
 NAME = "our-r-band"
 
@@ -57,7 +56,7 @@ def bounce_errors(spec: dict, mu: float) -> dict:
 
 
 def compute(spec: dict, inputs: dict) -> dict:
-    edges = _log_edges(axis(spec["u_over_uc"]))
+    edges = log_edges(axis(spec["u_over_uc"]))
     n_bins = edges.size - 1
     m = len(inputs["mu"])
     out = {k: np.full((m, n_bins), np.nan) for k in ("median_err", "max_err", "fraction_failing")}
@@ -111,7 +110,7 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     ds["mu"].attrs.update(long_name="damping mu = nu / sqrt(2 k m)", units="1")
     ds = ds.assign_coords(u_bin=xr.Variable(("u_bin",), centres, {
         "long_name": "landing speed over u_c, bin centre (log grid)", "units": "1"}))
-    ds["u_bin_edges"] = xr.Variable(("u_bin_edge",), _log_edges(centres),
+    ds["u_bin_edges"] = xr.Variable(("u_bin_edge",), log_edges(centres),
                                     {"long_name": "edges of the u/u_c bins (geometric midpoints)", "units": "1"})
     ds.attrs.update(gamma=float(spec["gamma"]), psi0=float(spec["psi0"]), events=int(spec["events"]),
                     our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]))
@@ -133,7 +132,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     norm = LogNorm(vmin=max(finite.min(), 1e-6), vmax=max(finite.max(), 1.0)) if finite.size else None
     a1.set_facecolor("0.85")  # grey: no bounce at that speed
     z = np.where(med > 0, med, np.nan)
-    mesh = a1.pcolormesh(ds["u_bin_edges"].values, _log_edges(mu), z, shading="flat", cmap="viridis", norm=norm)
+    mesh = a1.pcolormesh(ds["u_bin_edges"].values, log_edges(mu), z, shading="flat", cmap="viridis", norm=norm)
     fig.colorbar(mesh, ax=a1, shrink=0.9, label="median error of 1 - r")
     edges = ds["u_bin_edges"].values
     # band edges; hollow where the edge is the run's own end (or start) or beyond the grid (drawn at its end)
