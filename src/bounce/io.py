@@ -26,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import functools
+import json
 import os
 import re
 import signal
@@ -55,6 +56,7 @@ __all__ = [
     "from_dataset",
     "git_info",
     "is_disk_full",
+    "method_dataset",
     "read_dataset",
     "read_trajectory",
     "remove_stale_temporaries",
@@ -188,9 +190,6 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
     attributes hold everything :func:`from_dataset` needs to rebuild ``traj``.
     """
     params = traj.params
-    initial = traj.initial
-    dev = initial.deviations(params)
-    state = initial if isinstance(initial, State) else dev.to_state(params)
     event = ("event",)
     data_vars = {
         "t": _var(event, traj.t, *EVENT_VARIABLES["t"]),
@@ -222,18 +221,35 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         for name, (key, long_name) in SAMPLED_VARIABLES.items():
             data_vars[name] = _var(("time",), samples[key], long_name, _SAMPLED_COMMENT)
     settings = traj.settings
-    commit, dirty = git_info()
     attrs = {
-        "Conventions": "CF-1.10",
-        "title": "Two-mass bouncing ball: event records of one simulation",
-        "source": f"bounce {__version__}",
-        "references": REFERENCES,
-        "comment": (
+        **_run_attrs(traj.params, traj.initial, "Two-mass bouncing ball: event records of one simulation", (
             UNITS_COMMENT + " One record per event (impact, grazing, sticky_start, detach) strictly after "
             "t = 0 in time order, except a sticky phase beginning at t = 0, recorded as sticky_start at "
             "t = 0; x = 0 at every event and the state is the one just after it.  The records and the "
             "global attributes determine the motion exactly (bounce.io.sample_dataset)."
-        ),
+        )),
+        "stop_reason": traj.stop_reason,
+        "t_end": float(traj.t_end),
+        "t_valid": float(traj.t_valid),
+        "max_events": int(settings["max_events"]),
+        "t_max": float(settings["t_max"]),
+        "energy_stop": float(settings["energy_stop"]),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def _run_attrs(params: Parameters, initial, title: str, comment: str) -> dict:
+    """The global attributes of every simulation file: conventions, provenance, gamma, mu, the spring law
+    (:meth:`bounce.springs.base.SpringLaw.attrs`), y_eq, E_m and the initial state."""
+    dev = initial.deviations(params)
+    state = initial if isinstance(initial, State) else dev.to_state(params)
+    commit, dirty = git_info()
+    return {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "source": f"bounce {__version__}",
+        "references": REFERENCES,
+        "comment": comment,
         "bounce_version": __version__,
         "git_commit": commit,
         "git_dirty": dirty,
@@ -249,14 +265,35 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         "ydot0": state.ydot,
         "xidot0": dev.xidot,
         "eta0": dev.eta,
-        "stop_reason": traj.stop_reason,
-        "t_end": float(traj.t_end),
-        "t_valid": float(traj.t_valid),
-        "max_events": int(settings["max_events"]),
-        "t_max": float(settings["t_max"]),
-        "energy_stop": float(settings["energy_stop"]),
     }
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def method_dataset(result, params: Parameters, initial, max_events: int, t_max: float) -> xr.Dataset:
+    """The CF-1.10 dataset of a general-purpose method's run (:class:`bounce.methods.base.MethodResult`): its
+    impacts as it sees them (dimension ``event``: t, xdot, and energy_excess where the method reports it),
+    the law and the initial state as in :func:`to_dataset`, the method, its setting and how it stopped.  No
+    CPU time (results carry none).  An approximation: the records do not determine the motion exactly."""
+    event = ("event",)
+    data_vars = {
+        "t": _var(event, result.t, "time of the impact (soft-contact methods: the start of the contact)"),
+        "xdot": _var(event, result.xdot, EVENT_VARIABLES["xdot"][0]),
+    }
+    excess = result.extra.get("energy_excess")
+    if excess is not None and np.shape(excess) == np.shape(result.t):
+        data_vars["energy_excess"] = _var(event, excess, EVENT_VARIABLES["energy_excess"][0])
+    attrs = {
+        **_run_attrs(params, initial, "Two-mass bouncing ball: impacts of one run of a general-purpose method", (
+            UNITS_COMMENT + " One record per impact the method reports (bounce.methods.base), in time order; "
+            "an approximation of the exact dynamics, to the method's own accuracy.")),
+        "method": result.method,
+        "setting": json.dumps(result.setting, sort_keys=True, default=float),
+        "failure": result.failure or "none",
+        "failure_index": int(result.failure_index),
+        "t_end": float(result.t_end),
+        "max_events": int(max_events),
+        "t_max": float(t_max),
+    }
+    return xr.Dataset(data_vars, attrs=attrs)
 
 
 # --------------------------------------------------------------------------- Dataset -> Trajectory
