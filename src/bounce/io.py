@@ -162,7 +162,8 @@ def git_info() -> tuple[str, str]:
 
 # --------------------------------------------------------------------------- Trajectory -> Dataset
 
-def _var(dims, data, long_name, comment=None, dtype=np.float64, **extra):
+def cf_variable(dims, data, long_name, comment=None, dtype=np.float64, **extra):
+    """A dimensionless CF variable (units "1", long_name, optional comment and further attributes)."""
     attrs = {"long_name": long_name, "units": "1"}
     if comment:
         attrs["comment"] = comment
@@ -192,17 +193,17 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
     params = traj.params
     event = ("event",)
     data_vars = {
-        "t": _var(event, traj.t, *EVENT_VARIABLES["t"]),
-        "tau": _var(event, traj.tau, *EVENT_VARIABLES["tau"]),
-        "xdot": _var(event, traj.xdot, *EVENT_VARIABLES["xdot"]),
-        "y": _var(event, traj.y, *EVENT_VARIABLES["y"]),
-        "y_minus_yeq": _var(event, traj.y_minus_yeq, *EVENT_VARIABLES["y_minus_yeq"]),
-        "ydot": _var(event, traj.ydot, *EVENT_VARIABLES["ydot"]),
-        "xidot": _var(event, traj.xidot, *EVENT_VARIABLES["xidot"]),
-        "eta": _var(event, traj.eta, *EVENT_VARIABLES["eta"]),
-        "energy": _var(event, traj.energy, *EVENT_VARIABLES["energy"]),
-        "energy_excess": _var(event, traj.energy_excess, *EVENT_VARIABLES["energy_excess"]),
-        "kind": _var(
+        "t": cf_variable(event, traj.t, *EVENT_VARIABLES["t"]),
+        "tau": cf_variable(event, traj.tau, *EVENT_VARIABLES["tau"]),
+        "xdot": cf_variable(event, traj.xdot, *EVENT_VARIABLES["xdot"]),
+        "y": cf_variable(event, traj.y, *EVENT_VARIABLES["y"]),
+        "y_minus_yeq": cf_variable(event, traj.y_minus_yeq, *EVENT_VARIABLES["y_minus_yeq"]),
+        "ydot": cf_variable(event, traj.ydot, *EVENT_VARIABLES["ydot"]),
+        "xidot": cf_variable(event, traj.xidot, *EVENT_VARIABLES["xidot"]),
+        "eta": cf_variable(event, traj.eta, *EVENT_VARIABLES["eta"]),
+        "energy": cf_variable(event, traj.energy, *EVENT_VARIABLES["energy"]),
+        "energy_excess": cf_variable(event, traj.energy_excess, *EVENT_VARIABLES["energy_excess"]),
+        "kind": cf_variable(
             event, traj.kind, "kind of event",
             "impact: collision rule (psi' and xi' exchanged); grazing: tangential contact, "
             "nothing exchanged; sticky_start: the lower mass comes to rest on the floor; "
@@ -217,9 +218,9 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         times = _finite_1d(sample_times)
         samples = sample_trajectory(traj, times)
         samples["y"] = params.y_eq + samples["y_minus_yeq"]
-        coords["time"] = _var(("time",), times, "time of the samples")
+        coords["time"] = cf_variable(("time",), times, "time of the samples")
         for name, (key, long_name) in SAMPLED_VARIABLES.items():
-            data_vars[name] = _var(("time",), samples[key], long_name, _SAMPLED_COMMENT)
+            data_vars[name] = cf_variable(("time",), samples[key], long_name, _SAMPLED_COMMENT)
     settings = traj.settings
     attrs = {
         **_run_attrs(traj.params, traj.initial, "Two-mass bouncing ball: event records of one simulation", (
@@ -275,12 +276,12 @@ def method_dataset(result, params: Parameters, initial, max_events: int, t_max: 
     CPU time (results carry none).  An approximation: the records do not determine the motion exactly."""
     event = ("event",)
     data_vars = {
-        "t": _var(event, result.t, "time of the impact (soft-contact methods: the start of the contact)"),
-        "xdot": _var(event, result.xdot, EVENT_VARIABLES["xdot"][0]),
+        "t": cf_variable(event, result.t, "time of the impact (soft-contact methods: the start of the contact)"),
+        "xdot": cf_variable(event, result.xdot, EVENT_VARIABLES["xdot"][0]),
     }
     excess = result.extra.get("energy_excess")
     if excess is not None and np.shape(excess) == np.shape(result.t):
-        data_vars["energy_excess"] = _var(event, excess, EVENT_VARIABLES["energy_excess"][0])
+        data_vars["energy_excess"] = cf_variable(event, excess, EVENT_VARIABLES["energy_excess"][0])
     attrs = {
         **_run_attrs(params, initial, "Two-mass bouncing ball: impacts of one run of a general-purpose method", (
             UNITS_COMMENT + " One record per impact the method reports (bounce.methods.base), in time order; "
