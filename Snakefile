@@ -10,6 +10,7 @@ methods (speed against accuracy).
 """
 
 import json
+import os
 import re
 import sys
 from pathlib import Path
@@ -38,8 +39,22 @@ config.update(_checked)
 
 # Where results/, logs and .snakemake/ go: "." for the full pipeline, its own folder for the CI-sized
 # config, so that a CI-sized run never overwrites the full results (`snakemake --directory DIR` takes
-# precedence over it, as the tests do).
-workdir: config["workdir"]
+# precedence over it, as the tests do).  The folder is resolved once, by the snakemake the user started,
+# and handed to the jobs it spawns in the environment, absolute: a job re-reads this Snakefile from
+# another folder.  Under the SLURM executor the batch job starts where the user did (without their
+# --directory) and its job step starts a second snakemake (through srun) from the folder the first one
+# has already moved into, where a relative `workdir` would be applied twice (ci-run/ci-run/results).
+if workflow.is_main_process or "BOUNCE_WORKDIR" not in os.environ:
+    # with --directory, snakemake has already moved there
+    _run_dir = Path.cwd() if workflow.overwrite_workdir is not None else Path(config["workdir"]).resolve()
+    os.environ["BOUNCE_WORKDIR"] = str(_run_dir)
+
+
+envvars:
+    "BOUNCE_WORKDIR",  # passed to the jobs (also by executors that do not share the environment)
+
+
+workdir: os.environ["BOUNCE_WORKDIR"]
 
 
 include: "workflow/rules/common.smk"
@@ -50,6 +65,7 @@ include: "workflow/rules/checks.smk"
 include: "workflow/rules/methods.smk"
 include: "workflow/rules/docs.smk"
 include: "workflow/rules/sweeps.smk"
+include: "workflow/rules/cluster.smk"
 
 
 rule all:

@@ -14,7 +14,7 @@ rest on the floor: the median CPU time per phase, and the series steps and step-
 phase, counted by running the kernel's Python function (``py_func``) with counting wrappers
 around taylor_coefficients and tail_bounds (the windows through xi = 0 are not series steps).
 
-With --disc instead: the Cauchy disc fraction of bounce.series.taylor.disc_fraction (min(0.95, 2/a))
+With --disc instead: the Cauchy disc fraction of bounce.springs.power.disc_fraction (min(0.95, 2/a))
 against the fixed 0.95 it replaced, as the median CPU time of 2e4 impacts of two drops (psi = 6 at rest,
 the spring at xi = xi_eq or at its rest length xi = 0) for a = 2.5 .. 24, b = 1/2, gamma = mu = 0.01.
 """
@@ -31,8 +31,9 @@ from bounce.exact.flight import FOUND, NEVER
 from bounce.kinds import IMPACT, STOP_EVENTS
 from bounce.series import sticky as series_sticky
 from bounce.series.events import run_power_events
-from bounce.series.taylor import DEGREE_LONG, DISC, L_DISC, L_XI_EQ, law_array
+from bounce.series.taylor import DEGREE_LONG, L_DISC, L_XI_EQ, law_array
 from bounce.springs import SPRING_LAWS
+from bounce.springs.power import DISC
 from call_counts import counting
 
 #: Hertz sticky phases (gamma, mu, xi, xi'): a detach with xi < 0 throughout, a detach after

@@ -17,7 +17,6 @@ import pytest
 import bounce.io as bio
 from bounce import Parameters, State, simulate
 from bounce.cli import main
-from bounce.model import flight_bound
 
 GOOD = ["--gamma", "0.01", "--mu", "0.01", "--x0", "6", "--xdot0", "0", "--y0", "7", "--ydot0", "0"]
 PSI = ["--psi0", "6", "--psidot0", "0", "--xi0", "0", "--xidot0", "0"]
@@ -101,6 +100,16 @@ def test_missing_out(tmp_path, capsys, monkeypatch):
 def test_missing_command(capsys):
     code, _, err = _run([], capsys)
     _check_error(code, err, "COMMAND")
+
+
+def test_every_command_is_listed(capsys):
+    """--help and the unknown-command error name both commands (`check` is dispatched before argparse)."""
+    assert main(["--help"]) == 0
+    out = capsys.readouterr().out
+    assert "simulate" in out and "check" in out, out
+    code, _, err = _run(["frobnicate"], capsys)
+    _check_error(code, err, "COMMAND")
+    assert "'check'" in err and "'simulate'" in err, err
 
 
 @pytest.mark.parametrize("where", ["missing_dir", "parent_is_file", "is_directory"])
@@ -325,7 +334,7 @@ def test_flight_refusal_is_about_every_flight(tmp_path, capsys):
     mass.  Scaled to a bound beyond 1e8, the state is refused with that reason."""
     params, state = Parameters(0.01, 0.0), State.from_psi_xi(0.3, 0.0, 0.2, 5.0)
     traj = simulate(params, state, max_events=10)
-    bound = flight_bound(params.gamma, state.energy(params) - params.energy_min)
+    _, _, bound = params.spring.longest_flight(params.gamma, state.deviations(params))
     assert traj.tau[0] < 0.1 and 0.8 * bound < traj.tau.max() <= bound
     code, out, err = _run(["simulate", "--gamma", "0.01", "--mu", "0", "--psi0", "0.3", "--psidot0", "0", "--xi0",
                            "0.2", "--xidot0", "5e5", "--out", str(tmp_path / "run.nc")], capsys)

@@ -100,6 +100,19 @@ def test_thinned_on_the_fly_keeps_the_scene_rule(tmp_path):
     assert ds.attrs["n_events_simulated"] == n
 
 
+@pytest.mark.parametrize("n, keep", [(20000, {"first": 1000, "log_samples": 1000}), (2000, None)])
+def test_short_streamed_file_is_not_a_whole_file_chunk(n, keep, tmp_path):
+    """HDF5 allocates a chunk whole: a stream that writes at most ~2,000 records (thinned, or --events 2000) is
+    chunked by that bound, not by FILE_CHUNK records per variable (65,536 x 8 bytes each: 5.9 MB before)."""
+    params, initial, _ = _case("drop")
+    out = tmp_path / "short.nc"
+    stream.stream_to_netcdf(params, initial, out, n, keep=keep, progress=False)
+    ds = read_dataset(out)
+    records, variables = ds.sizes["event"], len(ds.variables)
+    assert records <= 2001
+    assert out.stat().st_size < 1.5 * records * variables * 8 + 50_000, out.stat().st_size
+
+
 class _Interrupt(Exception):
     pass
 
@@ -151,6 +164,20 @@ def test_cli_refuses_too_many_events_before_simulating(tmp_path, capsys, monkeyp
     err = capsys.readouterr().err
     assert code == 2 and err.startswith("error: --events 300000000 needs ~") and "--stream" in err
     assert len(err.strip().splitlines()) == 1 and not list(tmp_path.iterdir())
+
+
+def test_cli_stream_takes_more_events_than_memory_and_checks_the_chunk(tmp_path, capsys, monkeypatch):
+    """--stream: --events is not bounded by memory (a chunk is), up to MAX_STREAM_EVENTS; a --chunk that does
+    not fit is refused up front, with its estimate (the same check, 105 bytes per event of a chunk)."""
+    monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
+            "--xidot0", "0", "--stream", "--no-progress"]
+    assert main([*args, "--events", "1e11", "--t-max", "50", "--out", str(tmp_path / "long.nc")]) == 0
+    assert "stop: t_max" in capsys.readouterr().out
+    code = main([*args, "--events", "1e11", "--chunk", "1e9", "--out", str(tmp_path / "big.nc")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.startswith("error: --chunk 1000000000 needs ~") and "smaller --chunk" in err, err
+    assert len(err.strip().splitlines()) == 1 and sorted(p.name for p in tmp_path.iterdir()) == ["long.nc"]
 
 
 def test_cli_stream_equals_cli_one_shot(tmp_path, capsys):

@@ -24,7 +24,15 @@ keeps its partial file up to its last chunk, for --resume.
 Supported inputs (refused up front otherwise, see
 :func:`bounce.model.check_supported`): gamma in [1e-12, 0.5), mu in [0, 1e8],
 y0 > x0 >= 0, and an initial energy whose longest possible flight is at most
-1e8 time units; every accepted input gives finite results.
+1e8 time units; every accepted input gives finite results.  Another spring law
+(``--spring``, its parameters ``--NAME``: both from :data:`bounce.springs.SPRING_LAWS`)
+has its own domain (:mod:`bounce.springs.power`: the equilibrium above the floor,
+bounded over-damping and work per flight), refused the same way.
+
+The exact solver the law declares runs by default; ``--method NAME`` runs a
+general-purpose method of :mod:`bounce.methods` instead (the only way for a law
+without an exact solver) and writes the impacts it reports, with the law's
+attributes (:func:`bounce.io.method_dataset`).
 
 Event times ``t`` are correctly rounded sums of the exact phase durations
 ``tau``; a phase shorter than half an ulp of t (late in the asymptotic regime
@@ -38,7 +46,6 @@ import argparse
 import contextlib
 import dataclasses
 import math
-import os
 import signal
 import sys
 import threading
@@ -48,15 +55,14 @@ import numpy as np
 from ._version import __version__
 from .errors import OneLineParser, UsageError
 from .kinds import KIND_NAMES
-from .io import CODECS, check_output_path, to_dataset, write_netcdf
-from .model import (
-    FLIGHT_MAX, GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported,
-)
+from .io import CODECS, check_output_path, method_dataset, to_dataset, write_netcdf
+from .model import GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, check_physical, check_supported
 from .simulate import simulate
-from .trajectory import BYTES_PER_EVENT, MAX_EVENTS
-from .springs import spring_from_spec
-from .stream import (DEFAULT_CHUNK, check_memory, check_paths, partial_path, progress_enabled, simulate_chunked,
-                     stream_to_netcdf)
+from .springs import SPRING_LAWS, spring_from_spec
+from .springs.base import FLIGHT_MAX
+from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, check_paths,
+                     partial_path, progress_enabled, simulate_chunked, stream_to_netcdf)
+from .trajectory import MAX_EVENTS
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 EXIT_SIGINT, EXIT_SIGTERM = 128 + signal.SIGINT, 128 + signal.SIGTERM
@@ -90,33 +96,23 @@ def _number(allowed: str, check=lambda v: True, allow_inf: bool = False):
     return parse
 
 
-def _count(text: str) -> int:
-    """argparse type: an integer in [1, MAX_EVENTS] (``1000`` or ``1e6``) whose records fit in memory."""
+def _count(text: str, most: int = MAX_EVENTS) -> int:
+    """argparse type: an integer in [1, most] (``1000`` or ``1e6``).  Whether the records fit in memory is
+    checked once the run is known (:func:`bounce.stream.check_memory`: the whole run without --stream, one
+    chunk with it)."""
     try:
         value = float(text)
-        ok = math.isfinite(value) and value.is_integer() and 1 <= value <= MAX_EVENTS
+        ok = math.isfinite(value) and value.is_integer() and 1 <= value <= most
     except ValueError:
         ok = False
     if not ok:
-        raise argparse.ArgumentTypeError(
-            f"must be an integer (allowed range: [1, {MAX_EVENTS:.0e}]; the records take {BYTES_PER_EVENT} "
-            f"bytes per event), got {text!r}"
-        )
-    memory = _physical_memory()
-    if memory is not None and value * BYTES_PER_EVENT > memory:
-        raise argparse.ArgumentTypeError(
-            f"must be at most {memory // BYTES_PER_EVENT} on this machine (allowed range: [1, "
-            f"{memory // BYTES_PER_EVENT}]; the records take {BYTES_PER_EVENT} bytes per event and "
-            f"{memory / 2**30:.3g} GiB of memory are installed), got {text!r}"
-        )
+        raise argparse.ArgumentTypeError(f"must be an integer (allowed range: [1, {most:.0e}]), got {text!r}")
     return int(value)
 
 
-def _physical_memory() -> int | None:
-    try:
-        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):  # pragma: no cover (not POSIX)
-        return None
+def _event_count(text: str) -> int:
+    """--events: up to MAX_STREAM_EVENTS (a --stream run's memory does not grow with it)."""
+    return _count(text, MAX_STREAM_EVENTS)
 
 
 _ANY = _number("(-inf, inf)")
@@ -131,6 +127,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"bounce {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    # listed here for --help and the unknown-command error; main() hands `check ...` to bounce.claims_cli
+    sub.add_parser("check", add_help=False,
+                   help="run one claim of the validation report (or --list them) on the pipeline's datasets; "
+                        "bounce check --help")
     p = sub.add_parser(
         "simulate",
         allow_abbrev=False,
@@ -139,8 +139,9 @@ def build_parser() -> argparse.ArgumentParser:
                     "--psi0 --psidot0 --xi0 --xidot0, and write a CF netCDF file. Dimensionless units: lengths "
                     "in the spring rest length L, times in sqrt(m/2k).",
         epilog=f"Supported: gamma in [{GAMMA_MIN:g}, {GAMMA_MAX:g}), mu in [0, {MU_MAX:g}], y0 > x0 >= 0, and an "
-               f"initial energy whose longest possible flight is at most {FLIGHT_MAX:g} time units; other inputs are "
-               "refused with the range. "
+               f"initial energy whose longest possible flight is at most {FLIGHT_MAX:g} time units (the power law: "
+               "also the equilibrium above the floor and bounded work per flight); other inputs are refused with the "
+               "range. "
                "Event times t are correctly rounded sums of the exact durations tau: phases shorter than half "
                "an ulp of t leave t unchanged (equal consecutive times), tau stays exact.",
     )
@@ -148,13 +149,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="g m / (2 L k), > 0")
     p.add_argument("--mu", required=True, type=_number("[0, inf)"),
                    help="damping nu / sqrt(2 k m), >= 0")
-    sp = p.add_argument_group("spring law (paper's Discussion, eq. eq-motion-nonlin-psi-xi: "
-                              "xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b; linear: rho = 1, a = b = 0)")
-    sp.add_argument("--spring", choices=("linear", "power"), default="linear",
-                    help="linear (default, closed-form flights) or power (Taylor-series flights)")
-    sp.add_argument("--rho", type=_number("(0, inf)"), help="stiffness of the power law, > 0 (with --spring power)")
-    sp.add_argument("--a", type=_number("[0, inf)"), help="exponent of the restoring force, >= 0 (Hertz: 0.5)")
-    sp.add_argument("--b", type=_number("[0, inf)"), help="exponent of the damping, >= 0 (Hertz: 0.5)")
+    _spring_options(p)
     xy = p.add_argument_group("initial state, heights and velocities")
     xy.add_argument("--x0", type=_number("[0, inf)"), help="height of the lower mass, >= 0")
     xy.add_argument("--xdot0", type=_ANY, help="velocity of the lower mass (>= 0 if x0 = 0)")
@@ -165,7 +160,7 @@ def build_parser() -> argparse.ArgumentParser:
     pp.add_argument("--psidot0", type=_ANY)
     pp.add_argument("--xi0", type=_ANY, help="spring deformation")
     pp.add_argument("--xidot0", type=_ANY)
-    p.add_argument("--events", type=_count, default=1000,
+    p.add_argument("--events", type=_event_count, default=1000,
                    help="stop after N events (default 1000)")
     p.add_argument("--t-max", dest="t_max", type=_number("(0, inf]", lambda v: v > 0, allow_inf=True),
                    default=math.inf, help="stop at this time (default inf)")
@@ -174,6 +169,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt-sample", dest="dt_sample", type=_number("(0, inf)", lambda v: v > 0),
                    help="also sample x, y and velocities on [0, t_valid] with this step")
     p.add_argument("--out", required=True, metavar="FILE.nc", help="output netCDF file (its directory must exist)")
+    p.add_argument("--method", metavar="NAME",
+                   help="a general-purpose method of bounce.methods (e.g. scipy, penalty, moreau-jean, heyoka) "
+                        "instead of the law's exact solver (default); writes the impacts it reports")
     run = p.add_argument_group("long runs and output")
     run.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                      help="progress bar on stderr (default: when stderr is a terminal)")
@@ -188,25 +186,85 @@ def build_parser() -> argparse.ArgumentParser:
                      help="with --stream: keep only the first N events and --keep-log log-spaced ones after them")
     run.add_argument("--keep-log", dest="keep_log", type=_count, help="see --keep-first (>= 2)")
     run.add_argument("--compression", choices=sorted(CODECS), default="none",
-                     help="codec of the event records (default none: the fastest; zlib: ~2.2x smaller, "
-                          "~15x slower to write; ncdump reads both; zstd: ~1.3x smaller, ~4x slower, needs the HDF5 zstd filter to read)")
+                     help="codec of the event records (default none: the fastest). Smaller only for long runs, "
+                          "measured on the drop of fig. rigid-fall: zlib 1.7x at 2e5 events, 2.2x at 2e6, but 11%% "
+                          "larger at 1e3; ncdump reads it. zstd 1.2x at 2e5, needs the HDF5 zstd filter to read. "
+                          "Both are slower to write (benchmarks/bench_cli.py --compression)")
     return parser
 
 
 # --------------------------------------------------------------------------- helpers
 
+def _law_parameters() -> dict:
+    """option name -> (laws taking it, its interval if one law has it, else None), from the registry."""
+    out: dict = {}
+    for name, law in SPRING_LAWS.items():
+        for p in law.PARAMETERS:
+            laws, _ = out.get(p.name, ((), None))
+            out[p.name] = (laws + (name,), p.interval() if not laws else None)
+    return out
+
+
+def _spring_options(parser) -> None:
+    """``--spring`` and one option per law parameter, from :data:`bounce.springs.SPRING_LAWS` (a law is one
+    registry line: its options follow).  The law checks the values (one line naming the parameter)."""
+    group = parser.add_argument_group(
+        "spring law (paper's Discussion, eq. eq-motion-nonlin-psi-xi: xi'' = -f(xi) - 2 mu xi' g(xi))")
+    group.add_argument("--spring", choices=tuple(SPRING_LAWS), default="linear",
+                       help="; ".join(f"{name}: {law.summary}" for name, law in SPRING_LAWS.items())
+                            + " (default linear)")
+    docs = {p.name: p.doc for law in SPRING_LAWS.values() for p in law.PARAMETERS}
+    for name, (laws, interval) in _law_parameters().items():
+        group.add_argument(f"--{name}", type=_number(interval or "(-inf, inf)"),
+                           help=f"{docs[name]}, in {interval} (with --spring {' or '.join(laws)})" if interval
+                           else f"a parameter of --spring {' or '.join(laws)}")
+
+
 def _spring(args):
-    """The law of --spring/--rho/--a/--b (bounce.springs): every parameter of the power law is required."""
-    law_params = {k: getattr(args, k) for k in ("rho", "a", "b")}
-    if args.spring == "linear":
-        given = [f"--{k}" for k, v in law_params.items() if v is not None]
-        if given:
-            raise UsageError(f"{' '.join(given)}: only with --spring power (the linear spring has rho = 1, a = b = 0)")
-        return spring_from_spec(None)
-    missing = [f"--{k}" for k, v in law_params.items() if v is None]
+    """The law of --spring and its parameter options (bounce.springs): every parameter of the law is required,
+    no other law's."""
+    law = SPRING_LAWS[args.spring]
+    own = [p.name for p in law.PARAMETERS]
+    others = {name: laws for name, (laws, _) in _law_parameters().items() if name not in own}
+    given = [name for name in others if getattr(args, name) is not None]
+    if given:
+        takes = " ".join(f"--{n}" for n in own) or "no parameters"
+        raise UsageError(f"{' '.join('--' + n for n in given)}: only with --spring {' or '.join(others[given[0]])} "
+                         f"(the {args.spring} spring takes {takes})")
+    missing = [name for name in own if getattr(args, name) is None]
     if missing:
-        raise UsageError(f"--spring power needs {' '.join(missing)} (rho > 0, a >= 0, b >= 0; Hertz: a = b = 0.5)")
-    return spring_from_spec({"law": "power", **law_params})
+        ranges = "; ".join(f"{p.name} in {p.interval()}" for p in law.PARAMETERS)
+        raise UsageError(f"--spring {args.spring} needs {' '.join('--' + n for n in missing)} ({ranges})")
+    return spring_from_spec({"law": args.spring, **{name: getattr(args, name) for name in own}})
+
+
+def _method(args, params):
+    """The general-purpose method of ``--method`` (None: the law's exact solver), checked against the law."""
+    if args.method is None or args.method == "exact":
+        if params.spring.solver is None:
+            raise UsageError(f"the {params.spring.name} spring has no exact solver: choose a general-purpose method "
+                             f"with --method ({', '.join(_methods_for(params))})")
+        return None
+    from .methods import registry
+
+    methods = registry()
+    if args.method not in methods or not methods[args.method].supports(params):
+        raise UsageError(f"--method must be one of {', '.join(_methods_for(params))} for the {params.spring.name} "
+                         f"spring, got {args.method!r}")
+    unsupported = [opt for opt, given in (("--stream", args.stream), ("--resume", args.resume),
+                                          ("--dt-sample", args.dt_sample is not None),
+                                          ("--keep-first", args.keep_first is not None),
+                                          ("--energy-stop", args.energy_stop != 0.0)) if given]
+    if unsupported:
+        raise UsageError(f"{' '.join(unsupported)}: only with the exact solver (drop --method {args.method})")
+    return methods[args.method]
+
+
+def _methods_for(params) -> list[str]:
+    """The methods of bounce.methods that can run ``params.spring``."""
+    from .methods import registry
+
+    return sorted(name for name, spec in registry().items() if spec.supports(params))
 
 
 def _initial_state(args) -> State:
@@ -309,6 +367,7 @@ def _keep(args) -> dict | None:
 def _stream_command(args, params, initial, out) -> int:
     if args.dt_sample is not None:
         raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
+    check_memory(args.chunk, BYTES_PER_EVENT_STREAM, "--chunk")
     try:
         result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
                                   _keep(args), args.resume, args.progress, args.compression)
@@ -328,7 +387,8 @@ def _stream_command(args, params, initial, out) -> int:
 def _simulate_command(args) -> int:
     params = Parameters(args.gamma, args.mu, _spring(args))
     initial = _initial_state(args)
-    check_supported(params, initial.deviations(params))
+    check_supported(params, initial.deviations(params), args.t_max)
+    method = _method(args, params)
     streamed = args.stream or args.resume
     try:  # every name the run writes, before simulating: the partial file of a stream is checked as --out is
         out = check_paths(args.out)[0] if streamed else check_output_path(args.out)
@@ -336,9 +396,11 @@ def _simulate_command(args) -> int:
         raise UsageError(
             f"--out must be a new file or a regular file in an existing, writable directory: {exc}"
         ) from None
+    if method is not None:
+        return _method_command(args, method, params, initial, out)
     chunked = streamed or progress_enabled(args.progress)
-    if chunked and params.spring.name != "linear":
-        raise UsageError("--stream, --resume and --progress run the linear spring's event loop in chunks; "
+    if chunked and params.spring.solver != "exact":
+        raise UsageError("--stream, --resume and --progress run the closed-form event loop in chunks; "
                          f"the {params.spring.name} spring runs in one call (drop them)")
     if streamed:
         if args.resume and not args.stream:
@@ -362,6 +424,21 @@ def _simulate_command(args) -> int:
     write_netcdf(dataset, out, compression=args.compression)
     counts = np.bincount(traj.kind, minlength=len(KIND_NAMES))
     print(_summary(len(traj), counts, traj.stop_reason, traj.t_end, out, None if times is None else len(times)))
+    return EXIT_OK
+
+
+def _method_command(args, method, params, initial, out) -> int:
+    """Run the general-purpose ``method`` and write the impacts it reports (bounce.io.method_dataset)."""
+    if args.progress:
+        raise UsageError(f"--progress: only with the exact solver (drop --method {args.method})")
+    check_memory(args.events, 4 * 8)  # t, xdot and the method's per-impact arrays
+    with _signals_end_the_process():
+        result = method.run(params, initial, max_events=args.events, t_max=args.t_max)
+        dataset = method_dataset(result, params, initial, args.events, args.t_max)
+    write_netcdf(dataset, out, compression=args.compression)
+    stop = result.failure or ("max_events" if len(result.t) >= args.events else "t_max")
+    print(f"bounce: {len(result.t)} impacts by method {result.method}, stop: {stop}, t_end = {result.t_end:.10g}; "
+          f"wrote {out}")
     return EXIT_OK
 
 

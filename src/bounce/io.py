@@ -26,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import functools
+import json
 import os
 import re
 import signal
@@ -55,6 +56,7 @@ __all__ = [
     "from_dataset",
     "git_info",
     "is_disk_full",
+    "method_dataset",
     "read_dataset",
     "read_trajectory",
     "remove_stale_temporaries",
@@ -160,7 +162,8 @@ def git_info() -> tuple[str, str]:
 
 # --------------------------------------------------------------------------- Trajectory -> Dataset
 
-def _var(dims, data, long_name, comment=None, dtype=np.float64, **extra):
+def cf_variable(dims, data, long_name, comment=None, dtype=np.float64, **extra):
+    """A dimensionless CF variable (units "1", long_name, optional comment and further attributes)."""
     attrs = {"long_name": long_name, "units": "1"}
     if comment:
         attrs["comment"] = comment
@@ -188,22 +191,19 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
     attributes hold everything :func:`from_dataset` needs to rebuild ``traj``.
     """
     params = traj.params
-    initial = traj.initial
-    dev = initial.deviations(params)
-    state = initial if isinstance(initial, State) else dev.to_state(params)
     event = ("event",)
     data_vars = {
-        "t": _var(event, traj.t, *EVENT_VARIABLES["t"]),
-        "tau": _var(event, traj.tau, *EVENT_VARIABLES["tau"]),
-        "xdot": _var(event, traj.xdot, *EVENT_VARIABLES["xdot"]),
-        "y": _var(event, traj.y, *EVENT_VARIABLES["y"]),
-        "y_minus_yeq": _var(event, traj.y_minus_yeq, *EVENT_VARIABLES["y_minus_yeq"]),
-        "ydot": _var(event, traj.ydot, *EVENT_VARIABLES["ydot"]),
-        "xidot": _var(event, traj.xidot, *EVENT_VARIABLES["xidot"]),
-        "eta": _var(event, traj.eta, *EVENT_VARIABLES["eta"]),
-        "energy": _var(event, traj.energy, *EVENT_VARIABLES["energy"]),
-        "energy_excess": _var(event, traj.energy_excess, *EVENT_VARIABLES["energy_excess"]),
-        "kind": _var(
+        "t": cf_variable(event, traj.t, *EVENT_VARIABLES["t"]),
+        "tau": cf_variable(event, traj.tau, *EVENT_VARIABLES["tau"]),
+        "xdot": cf_variable(event, traj.xdot, *EVENT_VARIABLES["xdot"]),
+        "y": cf_variable(event, traj.y, *EVENT_VARIABLES["y"]),
+        "y_minus_yeq": cf_variable(event, traj.y_minus_yeq, *EVENT_VARIABLES["y_minus_yeq"]),
+        "ydot": cf_variable(event, traj.ydot, *EVENT_VARIABLES["ydot"]),
+        "xidot": cf_variable(event, traj.xidot, *EVENT_VARIABLES["xidot"]),
+        "eta": cf_variable(event, traj.eta, *EVENT_VARIABLES["eta"]),
+        "energy": cf_variable(event, traj.energy, *EVENT_VARIABLES["energy"]),
+        "energy_excess": cf_variable(event, traj.energy_excess, *EVENT_VARIABLES["energy_excess"]),
+        "kind": cf_variable(
             event, traj.kind, "kind of event",
             "impact: collision rule (psi' and xi' exchanged); grazing: tangential contact, "
             "nothing exchanged; sticky_start: the lower mass comes to rest on the floor; "
@@ -218,22 +218,39 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         times = _finite_1d(sample_times)
         samples = sample_trajectory(traj, times)
         samples["y"] = params.y_eq + samples["y_minus_yeq"]
-        coords["time"] = _var(("time",), times, "time of the samples")
+        coords["time"] = cf_variable(("time",), times, "time of the samples")
         for name, (key, long_name) in SAMPLED_VARIABLES.items():
-            data_vars[name] = _var(("time",), samples[key], long_name, _SAMPLED_COMMENT)
+            data_vars[name] = cf_variable(("time",), samples[key], long_name, _SAMPLED_COMMENT)
     settings = traj.settings
-    commit, dirty = git_info()
     attrs = {
-        "Conventions": "CF-1.10",
-        "title": "Two-mass bouncing ball: event records of one simulation",
-        "source": f"bounce {__version__}",
-        "references": REFERENCES,
-        "comment": (
+        **_run_attrs(traj.params, traj.initial, "Two-mass bouncing ball: event records of one simulation", (
             UNITS_COMMENT + " One record per event (impact, grazing, sticky_start, detach) strictly after "
             "t = 0 in time order, except a sticky phase beginning at t = 0, recorded as sticky_start at "
             "t = 0; x = 0 at every event and the state is the one just after it.  The records and the "
             "global attributes determine the motion exactly (bounce.io.sample_dataset)."
-        ),
+        )),
+        "stop_reason": traj.stop_reason,
+        "t_end": float(traj.t_end),
+        "t_valid": float(traj.t_valid),
+        "max_events": int(settings["max_events"]),
+        "t_max": float(settings["t_max"]),
+        "energy_stop": float(settings["energy_stop"]),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def _run_attrs(params: Parameters, initial, title: str, comment: str) -> dict:
+    """The global attributes of every simulation file: conventions, provenance, gamma, mu, the spring law
+    (:meth:`bounce.springs.base.SpringLaw.attrs`), y_eq, E_m and the initial state."""
+    dev = initial.deviations(params)
+    state = initial if isinstance(initial, State) else dev.to_state(params)
+    commit, dirty = git_info()
+    return {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "source": f"bounce {__version__}",
+        "references": REFERENCES,
+        "comment": comment,
         "bounce_version": __version__,
         "git_commit": commit,
         "git_dirty": dirty,
@@ -249,14 +266,35 @@ def to_dataset(traj: Trajectory, sample_times=None) -> xr.Dataset:
         "ydot0": state.ydot,
         "xidot0": dev.xidot,
         "eta0": dev.eta,
-        "stop_reason": traj.stop_reason,
-        "t_end": float(traj.t_end),
-        "t_valid": float(traj.t_valid),
-        "max_events": int(settings["max_events"]),
-        "t_max": float(settings["t_max"]),
-        "energy_stop": float(settings["energy_stop"]),
     }
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def method_dataset(result, params: Parameters, initial, max_events: int, t_max: float) -> xr.Dataset:
+    """The CF-1.10 dataset of a general-purpose method's run (:class:`bounce.methods.base.MethodResult`): its
+    impacts as it sees them (dimension ``event``: t, xdot, and energy_excess where the method reports it),
+    the law and the initial state as in :func:`to_dataset`, the method, its setting and how it stopped.  No
+    CPU time (results carry none).  An approximation: the records do not determine the motion exactly."""
+    event = ("event",)
+    data_vars = {
+        "t": cf_variable(event, result.t, "time of the impact (soft-contact methods: the start of the contact)"),
+        "xdot": cf_variable(event, result.xdot, EVENT_VARIABLES["xdot"][0]),
+    }
+    excess = result.extra.get("energy_excess")
+    if excess is not None and np.shape(excess) == np.shape(result.t):
+        data_vars["energy_excess"] = cf_variable(event, excess, EVENT_VARIABLES["energy_excess"][0])
+    attrs = {
+        **_run_attrs(params, initial, "Two-mass bouncing ball: impacts of one run of a general-purpose method", (
+            UNITS_COMMENT + " One record per impact the method reports (bounce.methods.base), in time order; "
+            "an approximation of the exact dynamics, to the method's own accuracy.")),
+        "method": result.method,
+        "setting": json.dumps(result.setting, sort_keys=True, default=float),
+        "failure": result.failure or "none",
+        "failure_index": int(result.failure_index),
+        "t_end": float(result.t_end),
+        "max_events": int(max_events),
+        "t_max": float(t_max),
+    }
+    return xr.Dataset(data_vars, attrs=attrs)
 
 
 # --------------------------------------------------------------------------- Dataset -> Trajectory

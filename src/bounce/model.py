@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 from .errors import InputError
 from .springs import LINEAR, SpringLaw
+from .springs.base import GAMMA_MIN, XI_EQ_MAX
 
 
 def _finite(name: str, value: float) -> float:
@@ -168,15 +169,10 @@ class Deviations:
 
 # --------------------------------------------------------------------------- supported domain of the simulator
 
-#: gamma < 1/2: the static equilibrium y_eq = 1 - 2 gamma of the upper mass lies above the floor.
-GAMMA_MAX = 0.5
-#: smallest gamma simulated: a drop of one rest length lasts sqrt(2/gamma) = 1.4e6 time units there.
-GAMMA_MIN = 1e-12
+#: gamma < 1/2: the static equilibrium y_eq = 1 - 2 gamma of the upper mass lies above the floor (linear law).
+GAMMA_MAX = XI_EQ_MAX
 #: largest damping simulated (the stiff oscillator's rates 1/(2 mu) and 2 mu stay 1e16 apart at most).
 MU_MAX = 1e8
-#: longest flight (in units sqrt(m/2k)) the root finder is asked to follow: it resolves every spring
-#: oscillation in a flight, so its work grows with the flight's length.
-FLIGHT_MAX = 1e8
 
 
 def check_physical(state: State) -> None:
@@ -192,35 +188,18 @@ def check_physical(state: State) -> None:
         )
 
 
-def flight_bound(gamma: float, energy_excess: float) -> float:
-    """Upper bound on every flight's duration from E - E_m (energy never increases).
+def check_supported(params: Parameters, start: "Deviations", t_max: float = math.inf) -> None:
+    """Refuse, with the supported range and why, what the exact solvers cannot follow to rounding.
 
-    Not a bound on the first flight only: an impact exchanges psi' and xi', so a state whose first flight is
-    short (a fast spring near the floor) can launch the centre of mass with the spring's energy; flights then
-    reach ~0.83 of this bound from the second one on (test_cli.py::test_flight_refusal_is_about_every_flight).
-
-    In flight psi'' = -gamma and |psi'| <= V = sqrt(2 (E - E_m)), the spring's deviation
-    |eta| <= V and gamma x0 <= E - E_m, so x = psi - xi > 0 cannot last beyond the root of
-    V T - gamma T^2/2 + x0 + 2 V = 0: with 2 gamma x0 <= V^2,
-    T <= (V + sqrt(2 V^2 + 4 gamma V))/gamma.
-    """
-    v = math.sqrt(2.0 * energy_excess)
-    return (v + math.sqrt(2.0 * v * v + 4.0 * gamma * v)) / gamma
-
-
-def check_supported(params: Parameters, start: "Deviations") -> None:
-    """Refuse, with the supported range and why, what the simulator cannot follow to rounding.
-
-    Every accepted input gives finite results: gamma in [GAMMA_MIN, GAMMA_MAX), mu in [0, MU_MAX],
-    and an initial energy whose longest possible flight (:func:`flight_bound`) is at most
-    FLIGHT_MAX (this also bounds every height, speed and time by ~1e16, far from overflow).
+    The same check for the API (:func:`bounce.simulate`, every spring law) and the CLI, so both refuse with the
+    same message.  Every accepted input gives finite results: the static equilibrium above the floor (linear
+    law: gamma < GAMMA_MAX = 1/2), gamma >= GAMMA_MIN, mu in [0, MU_MAX], and the law's own domain
+    (:meth:`bounce.springs.base.SpringLaw.check_supported`: an initial energy whose longest possible flight is
+    at most FLIGHT_MAX, which also bounds every height, speed and time by ~1e16, far from overflow; the power
+    law's own bounds, with the run's ``t_max``, in :mod:`bounce.springs.power`).
     """
     gamma, mu = params.gamma, params.mu
-    if not gamma < GAMMA_MAX:
-        raise InputError(
-            f"gamma must be < {GAMMA_MAX} (supported range: [{GAMMA_MIN:g}, {GAMMA_MAX})): for gamma >= 1/2 the "
-            f"static equilibrium y_eq = 1 - 2 gamma of the upper mass is at or below the floor), got {gamma!r}"
-        )
+    params.spring.check_equilibrium(gamma)
     if not gamma >= GAMMA_MIN:
         raise InputError(
             f"gamma must be >= {GAMMA_MIN:g} (supported range: [{GAMMA_MIN:g}, {GAMMA_MAX})): below it a drop of "
@@ -233,16 +212,4 @@ def check_supported(params: Parameters, start: "Deviations") -> None:
             f"closed forms, whose two rates 1/(2 mu) and 2 mu are then 4e16 apart, are verified against the "
             f"high-precision reference), got {mu!r}"
         )
-    psidot = start.xdot + start.xidot
-    # products, not **: a huge state gives inf (refused below) instead of raising OverflowError
-    excess = 0.5 * (start.xidot * start.xidot + psidot * psidot + start.eta * start.eta) + gamma * start.x
-    longest = flight_bound(gamma, excess) if math.isfinite(excess) else math.inf
-    if not longest <= FLIGHT_MAX:
-        raise InputError(
-            f"initial state (x0 xdot0 y0 ydot0, or psi0 psidot0 xi0 xidot0): its energy E - E_m = {excess:.3g} "
-            f"allows flights up to {longest:.3g} time units long at gamma = {gamma!r} (supported range: flights "
-            f"<= {FLIGHT_MAX:g}, about E - E_m <= (gamma {FLIGHT_MAX:g})^2/12 = {(FLIGHT_MAX * gamma) ** 2 / 12:.3g}): "
-            f"the root finder resolves every spring oscillation of a flight, and a short first flight does not keep "
-            f"the later ones short (an impact exchanges psi' and xi': the spring's energy launches the centre of "
-            f"mass, for flights up to ~0.8 of this bound)"
-        )
+    params.spring.check_supported(gamma, mu, start, t_max)

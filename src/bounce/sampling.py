@@ -21,6 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .errors import InputError
 from .kinds import STICKY_START
 from .exact.flight import FOUND, flight_spring, gap, oscillator_at
 from .exact.oscillator import fundamental, make_oscillator
@@ -112,10 +113,10 @@ def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid,
 
     ``initial`` is the (x, xdot, xidot, eta) state at t = 0 (a
     :class:`bounce.model.Deviations` or a 4-tuple); the event arrays are those
-    of :class:`bounce.trajectory.Trajectory` (or of its netCDF dataset).  ``spring``: a
-    :class:`bounce.springs.power.PowerSpring` for the power law (eta = xi - xi_eq of that law;
-    its series steps), None or the linear spring for the closed forms.
-    Returns a dict of float64 arrays with keys x, xdot, y_minus_yeq, ydot.
+    of :class:`bounce.trajectory.Trajectory` (or of its netCDF dataset).  ``spring``: the law
+    (:mod:`bounce.springs`); its exact solver's dense output is used: the series steps for a law the
+    series solver serves (eta = xi - xi_eq of that law), the closed forms for the linear law (also when
+    None).  Returns a dict of float64 arrays with keys x, xdot, y_minus_yeq, ydot.
     """
     x0, u0, a0, eta0 = (initial.x, initial.xdot, initial.xidot, initial.eta) if hasattr(initial, "eta") else initial
     times = np.ascontiguousarray(times, dtype=np.float64)
@@ -124,8 +125,11 @@ def sample(gamma, mu, initial, t_events, kind, xdot, xidot, eta, times, t_valid,
               np.ascontiguousarray(xdot, dtype=np.float64), np.ascontiguousarray(xidot, dtype=np.float64),
               np.ascontiguousarray(eta, dtype=np.float64), float(x0), float(u0), float(a0), float(eta0))
     outputs = (out["x"].ravel(), out["xdot"].ravel(), out["y_minus_yeq"].ravel(), out["ydot"].ravel())
-    if spring is not None and spring.name != "linear":
-        law = law_array(spring.rho, spring.a, spring.b, float(mu), float(gamma))
+    solver = "exact" if spring is None else spring.solver
+    if solver not in ("exact", "series"):
+        raise InputError(f"spring law {spring.name!r} has no exact solver, so no dense output (bounce.springs)")
+    if solver == "series":
+        law = law_array(*spring.series_coefficients(), float(mu), float(gamma))
         flat = times.ravel()
         _sample_power(flat, np.argsort(flat, kind="stable"), *events, float(t_valid), law, *outputs)
         return out

@@ -15,11 +15,6 @@ from .exact.events import simulate_linear
 from .model import Deviations, InputError, Parameters, State
 from .trajectory import Trajectory
 
-#: spring laws (bounce.springs) the closed-form flights of bounce.exact.flight solve
-EXACT_LAWS = ("linear",)
-#: spring laws solved by the Taylor-series flights of bounce.series.flight (exact to rounding too)
-SERIES_LAWS = ("power",)
-
 
 def simulate(
     params: Parameters,
@@ -30,18 +25,21 @@ def simulate(
 ) -> Trajectory:
     """Simulate from ``initial`` (a State, or Deviations for states near equilibrium) until ``max_events`` events, ``t_max`` or E - E_m < ``energy_stop``.
 
-    Exact to rounding: closed-form flights (:mod:`bounce.exact.flight`), a root finder
-    that cannot skip an impact, closed-form sticky phases (:mod:`bounce.exact.events`); for the
-    power-law spring (``params.spring``), Taylor-series flights and sticky phases with rigorous
-    tails (:mod:`bounce.series.events`, :mod:`bounce.series.sticky`; one more stop reason,
-    ``slow_crossing``).
+    The solver is the one the law declares (``params.spring.solver``, :mod:`bounce.springs.base`), after the
+    same domain check as the CLI (:func:`bounce.model.check_supported`).  Exact to rounding: closed-form flights
+    (:mod:`bounce.exact.flight`), a root finder that cannot skip an impact, closed-form sticky phases
+    (:mod:`bounce.exact.events`); for the power-law spring, Taylor-series flights and sticky phases with rigorous
+    tails (:mod:`bounce.series.events`, :mod:`bounce.series.sticky`; one more stop reason, ``slow_crossing``).  A law
+    with no exact solver is refused (run it with a general-purpose method, :mod:`bounce.methods`).
     """
-    if params.spring.name in SERIES_LAWS:  # no closed form: Taylor-series flights (bounce.series.events)
+    solver = params.spring.solver
+    if solver == "series":  # no closed form: Taylor-series flights (bounce.series.events)
         from .series.events import simulate_power
 
         return simulate_power(params, params.spring, initial, max_events, t_max, energy_stop)
-    if params.spring.name not in EXACT_LAWS:
+    if solver != "exact":
         raise InputError(
-            f"spring law must be one of {EXACT_LAWS + SERIES_LAWS}, got {params.spring.name!r}"
+            f"spring law {params.spring.name!r} has no exact solver (bounce.springs: solver None); simulate it with "
+            f"a general-purpose method of bounce.methods (CLI: simulate --method NAME)"
         )
     return simulate_linear(params, initial, max_events, t_max, energy_stop)

@@ -79,10 +79,11 @@ def check_memory(events: int, bytes_per_event: int = BYTES_PER_EVENT, option: st
     need = events * bytes_per_event + BASELINE_BYTES
     have = available_memory()
     if need > have:
+        most = max((have - BASELINE_BYTES) // bytes_per_event, 0)
+        hint = "use --stream (bounded memory)" if option == "--events" else f"use a smaller {option}"
         raise InputError(
             f"{option} {events} needs ~{need / 1e9:.3g} GB of memory ({bytes_per_event} bytes per event), "
-            f"{have / 1e9:.3g} GB available: use --stream (bounded memory) or at most "
-            f"{max((have - BASELINE_BYTES) // bytes_per_event, 0)} events"
+            f"{have / 1e9:.3g} GB available (allowed range here: [1, {most}]): {hint}"
         )
 
 
@@ -107,8 +108,8 @@ def chunks(params: Parameters, initial, max_events: int, t_max: float = math.inf
     """
     max_events = positive_int("events", max_events, MAX_STREAM_EVENTS)
     chunk = positive_int("chunk", chunk, MAX_EVENTS)
-    if params.spring.name != "linear":
-        raise InputError(f"chunked runs drive the linear spring's event loop; got the {params.spring.name} spring")
+    if params.spring.solver != "exact":
+        raise InputError(f"chunked runs drive the closed-form event loop; got the {params.spring.name} spring")
     start = initial.deviations(params)
     check_supported(params, start)
     params_arr, coefs = make_oscillator(params.mu)
@@ -328,14 +329,18 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
     out, part = check_paths(out)
     settings = {"max_events": max_events, "t_max": float(t_max), "energy_stop": float(energy_stop)}
     header = _header(params, initial, settings, keep, chunk)
+    kept = kept_indices(max_events, keep)
+    # HDF5 allocates a chunk whole: a run that can write only a few records (the kept events and the last
+    # one, or --events) is chunked by that many, not by FILE_CHUNK records per variable
+    records = max_events if kept is None else min(len(kept) + 1, max_events)
     with _lock(part):
         if resume:
             nc = _open_for_resume(part, header, params.spring, compression)
         else:
-            write_netcdf(header, part, compression, unlimited="event", chunksize=min(chunk, FILE_CHUNK))
+            write_netcdf(header, part, compression, unlimited="event", chunksize=min(chunk, FILE_CHUNK, records))
             nc = netCDF4.Dataset(part, "a")
         try:
-            summary, final = _append(nc, params, initial, settings, keep, chunk, progress)
+            summary, final = _append(nc, params, initial, settings, kept, chunk, progress)
             with signals_deferred():  # the partial file stays resumable until it is the output
                 nc.setncatts(final)
                 for name in STREAM_ATTRS:
@@ -356,11 +361,10 @@ def stream_to_netcdf(params: Parameters, initial, out, max_events: int, t_max: f
     return summary
 
 
-def _append(nc, params, initial, settings, keep, chunk, progress) -> tuple[dict, dict]:
-    """Run the chunks into the open partial file ``nc`` (see :func:`stream_to_netcdf`); return the summary and
-    the file's final attributes."""
+def _append(nc, params, initial, settings, kept, chunk, progress) -> tuple[dict, dict]:
+    """Run the chunks into the open partial file ``nc`` (see :func:`stream_to_netcdf`), keeping the events
+    ``kept`` (:func:`kept_indices`; None: all); return the summary and the file's final attributes."""
     max_events, t_max, energy_stop = settings["max_events"], settings["t_max"], settings["energy_stop"]
-    kept = kept_indices(max_events, keep)
     nc.set_auto_maskandscale(False)
     for var in nc.variables.values():  # HDF5's default chunk cache (MBs per variable) would grow with the file
         var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61, preemption=1.0)

@@ -22,7 +22,7 @@ from mpmath import mp, mpf
 from bounce.analysis import reference as R
 from bounce import Deviations, Parameters, State, simulate
 from bounce.io import EVENT_VARIABLES
-from bounce.model import FLIGHT_MAX
+from bounce.springs.base import FLIGHT_MAX
 from bounce.exact.oscillator import SERIES_Q, fundamental, make_oscillator
 
 EPS = 2.0**-52

@@ -19,6 +19,7 @@ from scipy.integrate import solve_ivp
 from bounce import Parameters, State
 from bounce.methods import exact, moreau_jean, penalty, registry, scipy_ivp
 from bounce.methods.base import FAILURES, MethodResult
+from bounce.springs import SPRING_LAWS
 
 GAMMA = MU = 0.01
 P = Parameters(GAMMA, MU)
@@ -115,8 +116,8 @@ def dip_state(delta):
     the bottom: x = -delta, x' = 0, xi = 0.05 (spring stretched), psi' = xi' = 0, integrated backwards."""
     xi = 0.05
     s_bottom = np.array([-delta, 0.0, (xi - delta) + xi + 1.0, 0.0])
-    A, b = scipy_ivp.system(GAMMA, MU)
-    back = solve_ivp(lambda t, s: A @ s + b, (0.0, -2.0), s_bottom, method="DOP853", rtol=1e-13, atol=1e-15)
+    rhs = scipy_ivp.dynamics(P)[0]
+    back = solve_ivp(rhs, (0.0, -2.0), s_bottom, method="DOP853", rtol=1e-13, atol=1e-15)
     return State(*back.y[:, -1])
 
 
@@ -300,7 +301,10 @@ def test_compare_datasets_and_figures(tmp_path):
     assert 0.0 < tight < loose < 1e-2
     assert wp["setting"].values[3] == '{"omega_dt": 0.4, "stiffness": 10000.0}'  # "1.0e4" read as a number
     assert sm["failure"].dims == ("run", "start") and set(sm["failure"].values.ravel()) <= set(FAILURES)
-    assert sm["failure"].values[1, 0] == "energy_gain" and sm["failure_index"].values[1, 0] == 50
+    # penalty at omega_dt = 0.4 through the chaotic transient: where the energy first rises moves with one ulp of
+    # psi(0) (168, 259, 107 for psi(0) = 6, 6 (1 +- 2^-52); 50, 153, 8 with the linear force written as
+    # -x/2 - gamma - 1/2 + y/2 before the law's f(xi) replaced it): a pin of this trajectory, not a tolerance
+    assert sm["failure"].values[1, 0] == "energy_gain" and sm["failure_index"].values[1, 0] == 168
     deep = int(sm["n_impacts"].values[0, 1])  # Moreau-Jean dt = 1e-2 from the exact state after impact 1000
     assert deep == 1500 and sm["n_tracked"].values[0, 1] >= 1000
     compare.plot_work_precision(wp, spec_wp, [tmp_path / "wp.png"])
@@ -318,7 +322,7 @@ def test_compare_on_the_hertz_spring(tmp_path):
     """The studies on a power-law scene: bounce's power-law solver is the reference (its row scores 0),
     heyoka at machine tolerance tracks the first impacts to ~1e-12 and a loose tolerance does worse; no
     y window (no dense output for the power law); the asymptotic constant is normalised by alpha gamma;
-    a method that simulates the linear spring only is refused with its name."""
+    a method that needs the closed-form solver (the linear spring) is refused with its name."""
     pytest.importorskip("heyoka")
     from bounce.studies import compare
     from bounce.analysis.theory import nonlin_alpha_limit
@@ -340,7 +344,9 @@ def test_compare_on_the_hertz_spring(tmp_path):
     loose, tight = float(wp["err_impact_times"][1]), float(wp["err_impact_times"][2])
     assert tight < 1e-12 and tight < loose
     assert float(wp["err_one_step_max"][2]) < 1e-12
-    assert wp.attrs["asym_scale"] == GAMMA * nonlin_alpha_limit(GAMMA, MU, 1.0, 0.5, 0.5)
+    hertz = Parameters(GAMMA, MU, SPRING_LAWS["power"](1.0, 0.5, 0.5))
+    assert wp.attrs["asym_scale"] == MU * hertz.spring.damping_factor(hertz.xi_eq) / 3.0  # mu g(xi_eq)/3
+    assert wp.attrs["asym_scale"] == pytest.approx(GAMMA * nonlin_alpha_limit(GAMMA, MU, 1.0, 0.5, 0.5), rel=4e-16)
     assert abs(float(wp["asym_constant_ref"][0]) - 1.0) < 0.3  # n tau_n alpha gamma near its limit 1 at n = 1000
     spec_sm = _methods_slice(methods, "stability_map")
     sm = compare.stability_map(spec_sm)
@@ -348,6 +354,6 @@ def test_compare_on_the_hertz_spring(tmp_path):
     compare.plot_work_precision(wp, spec_wp, [tmp_path / "wp.png"])
     compare.plot_stability_map(sm, spec_sm, [tmp_path / "sm.png"])
     assert (tmp_path / "wp.png").stat().st_size > 0 and (tmp_path / "sm.png").stat().st_size > 0
-    methods["stability_map"]["sweeps"] = [{"method": "scipy", "vary": {"rtol": [1e-6]}}]
-    with pytest.raises(ValueError, match="method 'scipy' does not simulate the 'power' spring"):
+    methods["stability_map"]["sweeps"] = [{"method": "contact-switch", "vary": {"delta": [1e-6]}}]
+    with pytest.raises(ValueError, match="method 'contact-switch' does not simulate the 'power' spring.*closed-form"):
         compare.stability_map(_methods_slice(methods, "stability_map"))

@@ -1,8 +1,10 @@
 """The config contract (bounce.pipeline.config, config/schema.yaml): a bad config stops the run before any job.
 
 Protects: unknown keys rejected in every section, NaN/inf and out-of-range numbers rejected, the
-scene's physical state checked by the model, dangling and shadowing references caught, schema
-defaults filled in, and `snakemake -n` printing one line that names the key.
+scene's physical state and its spring law's supported domain checked by the model, the spring fragment
+built from the law registry, every configured figure present, sample counts bounded by memory, dangling
+and shadowing references caught, schema defaults filled in, and `snakemake -n` printing one line that
+names the key.
 """
 
 import copy
@@ -87,6 +89,57 @@ def test_bad_number_is_named(path, value, words):
     with pytest.raises(ConfigError, match=words) as err:
         validated(_with(path, value))
     assert str(err.value).startswith(path)
+
+
+@pytest.mark.parametrize("path, value, words", [
+    # issue 25 item 9: accepted before (the law's own checks never ran on a config, and a had no maximum)
+    ("scenes.nonlin-hertz.spring.rho", 1e-6, r"^scenes\.nonlin-hertz: spring rho must be > gamma 2\^\(a\+1\) = 0.0282843"),
+    ("scenes.nonlin-hertz.spring.a", 1e300, r"^scenes\.nonlin-hertz\.spring\.a: must be <= 50"),
+    ("scenes.nonlin-hertz.spring.b", float("inf"), r"^scenes\.nonlin-hertz\.spring\.b: must be a finite number"),
+    ("scenes.nonlin-hertz.mu", 1e4, r"^scenes\.nonlin-hertz: mu must be <= "),
+    ("methods.scenes.drop-hertz.spring.rho", 1e-3, r"^methods\.scenes\.drop-hertz: spring rho must be > gamma"),
+    ("scenes.nonlin-hertz.spring", {"law": "power", "rho": 1.0, "a": 0.5}, r"^scenes\.nonlin-hertz\.spring: 'b' is a required"),
+    ("scenes.nonlin-hertz.spring", {"law": "linear", "rho": 1.0}, r"^scenes\.nonlin-hertz\.spring: unknown key 'rho'; allowed: law$"),
+    ("scenes.nonlin-hertz.spring", {"law": "cubic"}, r"^scenes\.nonlin-hertz\.spring\.law: 'cubic' is not one of \['linear', 'power'\]"),
+    ("figures.rigid-fall.samples", 1e12, r"^figures\.rigid-fall\.samples: must be <= 10000000, got .* \(a count of dense-output"),
+    ("reduced.switch.samples", 10**9, r"^reduced\.switch\.samples: must be <= 10000000"),
+    ("figures", {}, r"^figures: 'rigid-fall' is a required property$"),
+])
+def test_spring_domain_figures_and_samples_are_closed(path, value, words):
+    """One line naming the key (before: accepted, or a KeyError traceback when the Snakefile read ``figures``)."""
+    with pytest.raises(ConfigError, match=words) as err:
+        validated(_with(path, value))
+    assert "\n" not in str(err.value)
+
+
+def test_spring_fragment_is_built_from_the_registry():
+    """config/schema.yaml holds no law names or parameters: load_schema puts in bounce.springs.schema_fragment."""
+    from bounce.pipeline.config import load_schema
+    from bounce.springs import SPRING_LAWS
+
+    raw = yaml.safe_load((ROOT / "config" / "schema.yaml").read_text())["$defs"]["spring"]
+    assert set(raw) == {"description"}
+    spring = load_schema()["$defs"]["spring"]
+    assert spring["properties"]["law"]["enum"] == list(SPRING_LAWS)
+    power = next(b["then"] for b in spring["allOf"] if b["if"]["properties"]["law"]["const"] == "power")
+    assert power["required"] == ["rho", "a", "b"] and power["properties"]["a"]["maximum"] == 50.0
+
+
+def test_every_configured_figure_is_required():
+    """The schema requires exactly the figure blocks the registry reads (bounce.figures.FIGURES), so a validated
+    config always has them (``figures: {}`` was a KeyError traceback in the Snakefile's figure_table)."""
+    from bounce.pipeline.catalogue import figure_table
+    from bounce.pipeline.config import load_schema
+
+    read = set()
+
+    class Recorder(dict):
+        def __getitem__(self, key):
+            read.add(key)
+            return CONFIG["figures"][key]
+
+    figure_table({**validated(CONFIG), "figures": Recorder()})
+    assert set(load_schema()["properties"]["figures"]["required"]) == read
 
 
 def test_scene_below_the_floor_is_refused_by_the_model():

@@ -12,9 +12,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bounce.series.taylor import (DEGREE_LONG, DISC, L_DISC, L_GROW_A, L_GROW_B, cauchy_radius, comparison_guess,
-                                 comparison_step, disc_fraction, excursion, law_array, powers_at, series_radius,
-                                 step_radius, taylor_coefficients)
+from bounce.series.taylor import (DEGREE_LONG, L_DISC, L_GROW_A, L_GROW_B, cauchy_radius, comparison_guess,
+                                 comparison_step, excursion, law_array, powers_at, series_radius, step_radius,
+                                 taylor_coefficients)
+from bounce.springs.power import DISC, disc_fraction
 
 LAWS = {"hertz": (1.0, 0.5, 0.5), "a1/4_b1": (0.5, 0.25, 1.0), "linear": (1.0, 0.0, 0.0),
         "stiff_a8": (1.0, 8.0, 0.5)}  # the disc fraction d = 2/a = 0.25 < DISC (disc_fraction)

@@ -46,24 +46,25 @@ def test_first_impact_matches_reference(spring, start, gamma, mu):
     assert max(errors) <= REL, errors
 
 
-@pytest.mark.parametrize("a, xi0", [(0.5, "rest_length"), (0.5, "static"), (50.0, "rest_length")])
-def test_drop_transient_flights_match_reference(a, xi0):
+@pytest.mark.parametrize("rho, a, xi0", [(1.0, 0.5, "rest_length"), (1.0, 0.5, "static"), (1e14, 50.0, "rest_length")])
+def test_drop_transient_flights_match_reference(rho, a, xi0):
     """The Hertz drop of benchmarks/bench_power.py (gamma = mu = 0.01, psi(0) = 6, xi(0) = 0 or xi_eq):
     its first four flights, long ones through many crossings of xi = 0 among them (~70 time units,
     ~2e3 series steps), each from bounce's own float64 state, against the reference to 1e-14.  And the
-    same drop of the stiff law a = 50, b = 1/2, whose spring is nearly free for |xi| < 1 and stiff beyond
-    (the disc fraction 2/a of series.taylor.disc_fraction: with the fixed 0.95 its second flight did not
-    end in 14 min)."""
+    same drop of the stiff law a = 50, b = 1/2, whose spring is nearly free for |xi| < 0.45 and stiff beyond
+    (the disc fraction 2/a of springs.power.disc_fraction: with the fixed 0.95 its second flight did not
+    end in 14 min); rho = 1e14 holds the ball above the floor, |xi_eq| = 0.49 < 1/2 (the power law's domain,
+    bounce.springs.power: with rho = 1, |xi_eq| = 0.91, refused)."""
     gamma = mu = 0.01
-    spring = PowerSpring(1.0, a, 0.5)
+    spring = PowerSpring(rho, a, 0.5)
     params = Parameters(gamma, mu, spring)
-    xi_eq = float(law_array(1.0, a, 0.5, mu, gamma)[L_XI_EQ])
+    xi_eq = float(law_array(rho, a, 0.5, mu, gamma)[L_XI_EQ])
     drop = State.from_psi_xi(6.0, 0.0, 0.0 if xi0 == "rest_length" else params.xi_eq, 0.0)
     tr = simulate_power(params, spring, drop, max_events=4)
     assert list(tr.kind) == [0, 0, 0, 0]
     for i in range(1, 4):
         start = (0.0, float(tr.xdot[i - 1]), float(tr.xidot[i - 1]), float(tr.eta[i - 1]))
-        errors = PR.first_impact_errors(gamma, mu, 1.0, a, 0.5, start, xi_eq, event(tr, i))
+        errors = PR.first_impact_errors(gamma, mu, rho, a, 0.5, start, xi_eq, event(tr, i))
         assert max(errors) <= REL, (i, errors)
 
 

@@ -37,7 +37,8 @@ rule check:
         lambda w: check_input_files(w.name, config),
     output:
         nc="results/checks/{name}.nc",
-        png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks"),
+        png=report("results/checks/fig-{name}.png", caption="../report/check.rst", category="Validation checks",
+                   labels=lambda w: {"figure": f"results/checks/fig-{w.name}.png", "claim group": w.name}),
         pdf="results/checks/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(config["checks"][w.name]),

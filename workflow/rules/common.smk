@@ -2,7 +2,7 @@
 (figures: bounce.figures.FIGURES and bounce.pipeline.catalogue; studies: bounce.studies.registry; checks: bounce.checks) read here,
 so that no name is listed twice."""
 
-from bounce.paths import dataset, sticky_dataset
+from bounce.paths import dataset, figure_file, sticky_dataset
 from bounce.pipeline.catalogue import figure_table, pipeline_figures
 from bounce.studies import study_inputs, study_slices
 

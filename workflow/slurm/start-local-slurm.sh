@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # A one-node SLURM cluster on this machine (Debian's slurm-wlm and munge), for running the pipeline
-# through its SLURM profile (workflow/profiles/slurm) and for tests/test_slurm.py.
+# through its SLURM profile (workflow/profiles/slurm) and for tests/pipeline/test_slurm.py (.ci/run starts it).
 #
 #   sudo workflow/slurm/start-local-slurm.sh     # installs if missing, configures, starts, waits for idle
-#   workflow/slurm/stop-local-slurm.sh
+#   sudo workflow/slurm/stop-local-slurm.sh      # cancels every job, waits for them to end, stops the daemons
 #
 # Idempotent: a running, idle cluster with this configuration is left alone.  The node is this machine
 # with SLURM_CPUS (default 2) CPUs and SLURM_MEM_MB (default 8000) MB.  No accounting database: the
@@ -23,11 +23,15 @@ if [ "$(id -u)" -ne 0 ]; then
     say "must run as root (installs packages and starts the SLURM daemons)"; exit 1
 fi
 
-if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v munged >/dev/null; then
-    say "installing slurm-wlm and munge (apt-get)"
+if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v sbatch >/dev/null \
+        || ! command -v munged >/dev/null; then
+    # the daemons and the client commands of Debian's slurm-wlm, without the plugins of its other
+    # packages (hdf5, influxdb, rrd, ...) that a one-node cluster does not use: 8 packages instead of 43
+    pkgs=(slurmctld slurmd slurm-client munge)
+    say "installing ${pkgs[*]} (apt-get)"
     export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq slurm-wlm munge >/dev/null
+    install() { apt-get install -y -qq --no-install-recommends "${pkgs[@]}" </dev/null >/dev/null; }
+    install 2>/dev/null || { apt-get update -qq </dev/null && install; }   # update only if the lists are missing or stale
 fi
 
 mkdir -p "$CONF_DIR" "$LOG_DIR" /var/spool/slurmctld /var/spool/slurmd /run/munge
@@ -90,7 +94,7 @@ running /run/slurmd.pid || { say "starting slurmd"; slurmd; }
 for _ in $(seq 1 60); do
     state="$(sinfo -h -n "$HOST" -o %T 2>/dev/null || true)"
     case "$state" in
-        idle|mixed|allocated) say "node $HOST is $state ($CPUS CPUs, $MEM_MB MB)"; exit 0 ;;
+        idle|mixed|allocated) say "node $HOST is $state ($CPUS CPUs, $MEM_MB MB), $SECONDS s after this script started"; exit 0 ;;
         down*|drain*) scontrol update NodeName="$HOST" State=RESUME >/dev/null 2>&1 || true ;;
     esac
     sleep 1

@@ -28,7 +28,7 @@ import xarray as xr
 
 from .._version import __version__
 from ..errors import InputError
-from ..io import CODECS, REFERENCES, UNITS_COMMENT, git_info
+from ..io import CODECS, REFERENCES, UNITS_COMMENT, cf_variable, git_info
 from .common import KIND_NAMES
 from .model import GasParameters, GasState, RigidParameters, RigidState
 from .simulate import GasResult, GasRun, run_chunks, run_settings, positive_int
@@ -57,14 +57,6 @@ EVENT_NAMES = {
     "speed": ("approach speed of the touching masses just before the event", "relative to the floor for the floor"),
 }
 BYTES_PER_EVENT = 8 + 1 + 4 + 8
-
-
-def _var(dims, data, long_name, comment=None, dtype=np.float64, **extra):
-    attrs = {"long_name": long_name, "units": "1"}
-    if comment:
-        attrs["comment"] = comment
-    attrs.update(extra)
-    return xr.Variable(dims, np.asarray(data, dtype=dtype), attrs)
 
 
 def _initial(initial) -> dict[str, np.ndarray]:
@@ -115,20 +107,20 @@ def _stop_attrs(stop: str, t_end: float, message: str, n_events: int, collapse: 
 
 def _dataset(params, initial, settings, events: dict, snap_t, snap_event, snaps: dict, final: dict) -> xr.Dataset:
     data = {
-        "t": _var(("event",), events["t"], *EVENT_NAMES["t"]),
-        "kind": _var(("event",), events["kind"], *EVENT_NAMES["kind"], dtype=np.int8,
+        "t": cf_variable(("event",), events["t"], *EVENT_NAMES["t"]),
+        "kind": cf_variable(("event",), events["kind"], *EVENT_NAMES["kind"], dtype=np.int8,
                      flag_values=np.arange(len(KIND_NAMES), dtype=np.int8), flag_meanings=" ".join(KIND_NAMES)),
-        "pair": _var(("event",), events["pair"], *EVENT_NAMES["pair"], dtype=np.int32),
-        "speed": _var(("event",), events["speed"], *EVENT_NAMES["speed"]),
-        "snapshot_t": _var(("snapshot",), snap_t, "time of the snapshot"),
-        "snapshot_event": _var(("snapshot",), snap_event, "index of the event the snapshot follows", dtype=np.int64),
+        "pair": cf_variable(("event",), events["pair"], *EVENT_NAMES["pair"], dtype=np.int32),
+        "speed": cf_variable(("event",), events["speed"], *EVENT_NAMES["speed"]),
+        "snapshot_t": cf_variable(("snapshot",), snap_t, "time of the snapshot"),
+        "snapshot_event": cf_variable(("snapshot",), snap_event, "index of the event the snapshot follows", dtype=np.int64),
     }
     for name, values in snaps.items():
-        data[name] = _var(("snapshot", "grain"), values, FIELD_NAMES[name])
+        data[name] = cf_variable(("snapshot", "grain"), values, FIELD_NAMES[name])
     for name, values in final.items():
-        data["final_" + name] = _var(("grain",), values, FIELD_NAMES[name] + ", just after the last event")
+        data["final_" + name] = cf_variable(("grain",), values, FIELD_NAMES[name] + ", just after the last event")
     for name, values in _initial(initial).items():
-        data["initial_" + name] = _var(("grain",), values, INITIAL_NAMES[name])
+        data["initial_" + name] = cf_variable(("grain",), values, INITIAL_NAMES[name])
     return xr.Dataset(data, attrs=_attrs(params, settings))
 
 

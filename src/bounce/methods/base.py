@@ -14,8 +14,11 @@ contract:
    (one of FAILURES) with the index of the impact where it happened.
 4. ``cpu_time`` is the process time of the run itself (no JIT compile: warm up
    before timing).
-5. ``laws`` names the spring laws (:mod:`bounce.springs`) it can simulate; the
-   study drivers never hand it a ``params.spring`` outside them.
+5. ``needs`` is the :class:`Capability` a spring law (:mod:`bounce.springs`) must have for the
+   method to simulate it (any law: its numba physics; heyoka: a symbolic form; the exact solver
+   and the models built on it: an exact solver, or its closed forms); the study drivers never hand it a
+   ``params.spring`` without it.  The general-purpose methods call the law's physics
+   (``params.spring.physics``, :mod:`bounce.springs.base`), never a right-hand side of their own.
 """
 
 from __future__ import annotations
@@ -57,15 +60,36 @@ class MethodResult:
 
 
 @dataclass(frozen=True)
+class Capability:
+    """What a method needs of a spring law: ``what`` in words (for refusals), ``test(law) -> bool``."""
+
+    what: str
+    test: Callable[..., bool]
+
+
+#: every law: the contract's numba physics (f, f', g, V) is all a general-purpose method calls
+ANY_LAW = Capability("a spring law with numba physics (any law of bounce.springs)",
+                     lambda law: law.physics is not None)
+#: a law with f and g as symbolic expressions (heyoka builds its Taylor integrator from them)
+SYMBOLIC_LAW = Capability("a spring law with a symbolic form (SpringLaw.symbolic)",
+                          lambda law: type(law).symbolic is not None)
+#: a law an exact solver serves (closed forms or Taylor series, bounce.simulate)
+EXACT_SOLVER = Capability("a spring law with an exact solver (SpringLaw.solver)", lambda law: law.solver is not None)
+#: a law the closed-form solver serves (the models of the paper's linear ball built on its formulas)
+CLOSED_FORM = Capability("a spring law of the closed-form exact solver (SpringLaw.solver == 'exact')",
+                         lambda law: law.solver == "exact")
+
+
+@dataclass(frozen=True)
 class MethodSpec:
     name: str
     run: Callable[..., MethodResult]
     settings_doc: str = ""
-    laws: tuple[str, ...] = ("linear",)
+    needs: Capability = CLOSED_FORM
 
     def supports(self, params) -> bool:
         """Can this method simulate ``params.spring``?"""
-        return params.spring.name in self.laws
+        return self.needs.test(params.spring)
 
 
 def compile_exact_solver() -> None:

@@ -11,7 +11,7 @@ import numpy as np
 from ..kinds import IMPACT
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from .base import MethodResult, MethodSpec
+from .base import EXACT_SOLVER, MethodResult, MethodSpec
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
@@ -29,4 +29,4 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
 
 
 METHOD = MethodSpec(name="exact", run=run, settings_doc="none: exact to rounding (samples of y: linear spring only)",
-                    laws=("linear", "power"))
+                    needs=EXACT_SOLVER)

@@ -1,18 +1,19 @@
 """Method "heyoka": heyoka's adaptive Taylor integrator with event detection, the strongest
-general-purpose peer (issue 9), for the linear and the power-law spring.
+general-purpose peer (issue 9), for every spring law with a symbolic form (the linear law, the power law).
 
 The flight of eq. ``eq-motion-nonlin-psi-xi`` (linear: eq. ``eq-motion-psi-xi``) in the core's
-deviation variables s = (x, u = x', v = xi', eta = xi - xi_eq) (``a`` in the core; here a is the
-exponent):
+deviation variables s = (x, u = x', v = xi', eta = xi - xi_eq):
 
     x' = u,  u' = -gamma - xi'',  v' = xi'',  eta' = v,
-    xi'' = -rho xi |xi|^a - 2 mu v |xi|^b,   xi = xi_eq + eta,   xi_eq = -(gamma/rho)^(1/(a+1))
+    xi'' = -f(xi) - 2 mu v g(xi),   xi = xi_eq + eta,
 
-(eq. ``nonlin-equilibrium-xi``), with |xi|^p written (xi^2)^(p/2) and dropped when p = 0 (the
-linear law is then the linear system, no powers).  Set up as the issue asks for a fair peer:
+with f and g the law's symbolic form (:meth:`bounce.springs.base.SpringLaw.symbolic`; the power law
+writes |xi|^p as (xi^2)^(p/2) and drops it when p = 0, so the linear law is the linear system, no
+powers) and xi_eq its static equilibrium (eq. ``nonlin-equilibrium-xi``).  Set up as the issue asks for
+a fair peer:
 
-* compiled once per (a, b, tol, cooldown, high_accuracy) and reused (``functools.cache``);
-  gamma, mu, rho, xi_eq are runtime parameters, the state and time are reset per run;
+* compiled once per (law, tol, cooldown, high_accuracy) and reused (``functools.cache``);
+  gamma, mu, xi_eq are runtime parameters, the state and time are reset per run;
 * a terminal event on x = 0 with direction negative whose callback applies the impact rule
   (eq. ``collision-rule``: psi' and xi' exchanged) in place, x -> 0, u -> -u, v -> u + v, eta
   unchanged, and returns True, so heyoka goes on to the next flight without returning to Python;
@@ -23,7 +24,8 @@ Failure detection (from the integrator's own output):
 
 ``missed_impact``  (a) the flight outlives a bound it cannot outlive: x = psi - xi <= psi(t0)
     + psi'(t0) (t - t0) - gamma (t - t0)^2/2 + X_m, with X_m >= |xi| from the spring energy
-    xi'^2/2 + rho |xi|^(a+2)/(a+2), which does not increase in flight (eq. ``nonlin-energy``),
+    xi'^2/2 + V(xi), which does not increase in flight (eq. ``nonlin-energy``; X_m: the law's
+    :meth:`bounce.springs.base.SpringLaw.amplitude`),
     so x < 0 after that time: checked at the end of every propagation (each runs CHUNK_FLIGHTS = 64
     flight bounds ahead), a flight still under way past it has stepped over an impact (in
     practice: one that fell inside the event's cooldown); (b) x has a minimum below the floor inside a
@@ -85,13 +87,11 @@ import time
 import numpy as np
 
 from .._registry import lazy_import
-from ..analysis.theory import nonlin_equilibrium_xi
-from .base import MethodResult, MethodSpec
+from .base import SYMBOLIC_LAW, MethodResult, MethodSpec
 
 hy = lazy_import("heyoka")
 
-DEFAULTS = {"rho": None, "a": None, "b": None, "tol": 2.0**-52, "cooldown": None, "high_accuracy": False,
-            "cpu_budget": math.inf}
+DEFAULTS = {"tol": 2.0**-52, "cooldown": None, "high_accuracy": False, "cpu_budget": math.inf}
 STALL_DT = 1e-12
 STALL_COUNT = 50
 EVENT_STOP = -1  # heyoka's outcome for "stopped by terminal event 0" (stopping events report -1 - index)
@@ -100,28 +100,9 @@ EVENT_STOP = -1  # heyoka's outcome for "stopped by terminal event 0" (stopping 
 CHUNK_FLIGHTS = 64
 
 
-def spring_law(params, cfg) -> tuple[float, float, float, float]:
-    """(rho, a, b, xi_eq): the setting's law when it names one, else ``params.spring``'s (linear: 1, 0, 0),
-    whose own xi_eq is then kept (the core's eta is measured from it)."""
-    spring = params.spring
-    law = {"rho": 1.0, "a": 0.0, "b": 0.0}
-    if spring.name != "linear":
-        law.update({k: float(v) for k, v in spring.parameters().items() if k in law})
-    override = {k: float(cfg[k]) for k in law if cfg[k] is not None}
-    law.update(override)
-    rho, a, b = law["rho"], law["a"], law["b"]
-    if not (rho > 0.0 and math.isfinite(rho)):
-        raise ValueError(f"rho must be > 0 (allowed range: (0, inf)), got {rho!r}")
-    for name, v in (("a", a), ("b", b)):
-        if not (v >= 0.0 and math.isfinite(v)):
-            raise ValueError(f"{name} must be >= 0 (allowed range: [0, inf)), got {v!r}")
-    xi_eq = nonlin_equilibrium_xi(params.gamma, rho, a) if override else params.xi_eq
-    return rho, a, b, xi_eq
-
-
 @functools.cache
-def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accuracy: bool, checked: bool = True):
-    """The compiled heyoka integrator for exponents (a, b) (built once per process and setting).
+def integrator(law, tol: float, cooldown: float | None, high_accuracy: bool, checked: bool = True):
+    """The compiled heyoka integrator for the spring ``law`` (built once per process, law and setting).
 
     The floor x = 0 downwards is a terminal event whose callback applies the impact rule, so heyoka
     goes from flight to flight without returning to Python: for :func:`run` (``checked``) a
@@ -130,15 +111,9 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
     other event.  Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at
     construction; the copy is given the shared ``dips`` list)."""
     x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
-    gamma, mu, rho, xi_eq = (hy.par[i] for i in range(4))
-    xi = xi_eq + eta
-
-    def abs_pow(p):
-        return None if p == 0.0 else (xi * xi) ** (p / 2.0)
-
-    fa, fb = abs_pow(a), abs_pow(b)
-    force = rho * xi if fa is None else rho * xi * fa
-    damping = 2.0 * mu * v if fb is None else 2.0 * mu * v * fb
+    gamma, mu, xi_eq = (hy.par[i] for i in range(3))
+    force, factor = law.symbolic(hy, xi_eq + eta)
+    damping = 2.0 * mu * v if isinstance(factor, float) and factor == 1.0 else 2.0 * mu * v * factor
     xi2 = -force - damping
     dips = []
 
@@ -151,7 +126,7 @@ def integrator(a: float, b: float, tol: float, cooldown: float | None, high_accu
                        **kw)
     minimum = [hy.nt_event(u, on_minimum, direction=hy.event_direction.positive)] if checked else []
     ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
-                            t_events=[floor], nt_events=minimum, pars=[0.0] * 4, tol=tol,
+                            t_events=[floor], nt_events=minimum, pars=[0.0] * 3, tol=tol,
                             high_accuracy=high_accuracy)
     callback = ta.t_events[0].callback
     callback.dips = dips  # a function deep-copies to itself: on_minimum appends to this list
@@ -256,23 +231,20 @@ class _Flights(_ImpactRule):
 
 
 def _started(params, initial, setting, checked):
-    """(ta, callback, (rho, a, b, xi_eq), dev, eta0): the integrator of :func:`integrator` with the setting's
-    law and parameters, time 0, its callback reset, at the start state (:func:`_start`)."""
+    """(ta, callback, cfg, dev): the integrator of :func:`integrator` for ``params.spring``, with its parameters,
+    time 0, its callback reset, at the start state ``dev`` (:func:`_start`; eta = xi - params.xi_eq)."""
     cfg = _setting(setting)
-    rho, pa, pb, xi_eq = spring_law(params, cfg)
     dev = initial.deviations(params)
-    # the core's eta is xi - params.xi_eq; re-reference it if the setting chose another law
-    eta0 = dev.eta if xi_eq == params.xi_eq else (params.xi_eq - xi_eq) + dev.eta
-    ta, callback = integrator(pa, pb, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]), checked)
-    ta.pars[:] = [params.gamma, params.mu, rho, xi_eq]
+    ta, callback = integrator(params.spring, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]), checked)
+    ta.pars[:] = [params.gamma, params.mu, params.xi_eq]
     ta.time = 0.0
     ta.reset_cooldowns()
     callback.reset(0)
     callback.priming = True
-    _start(ta, dev.x, dev.xdot, dev.xidot, eta0)
+    _start(ta, dev.x, dev.xdot, dev.xidot, dev.eta)
     callback.priming = False
     callback.dips.clear()
-    return ta, callback, cfg, (rho, pa, pb, xi_eq), dev, eta0
+    return ta, callback, cfg, dev
 
 
 def impacts(params, initial, max_events, t_end, setting=None):
@@ -289,7 +261,7 @@ def impacts(params, initial, max_events, t_end, setting=None):
     every event missed) on a step ~1e8 long, which a flight whose x is an exact polynomial (the linear
     spring at rest) takes; :func:`run` propagates by CHUNK_FLIGHTS flight bounds for that reason.
     """
-    ta, rule, _, _, _, _ = _started(params, initial, setting, checked=False)
+    ta, rule, _, _ = _started(params, initial, setting, checked=False)
     rule.reset(max_events)
     start = time.process_time()
     ta.propagate_until(t_end)
@@ -310,10 +282,9 @@ def _setting(setting):
     return cfg
 
 
-def flight_bound(x, u, v, xi, gamma, rho, pa) -> float:
+def flight_bound(x, u, v, xi, gamma, law) -> float:
     """A time after which x < 0 whatever the spring does (module docstring, missed_impact (a))."""
-    es = 0.5 * v * v + rho * abs(xi) ** (pa + 2.0) / (pa + 2.0)
-    xm = ((pa + 2.0) * es / rho) ** (1.0 / (pa + 2.0))
+    xm = law.amplitude(0.5 * v * v + law.potential(xi))
     psi, p = x + xi, u + v
     c = max(psi + xm, 0.0) + 8.0 * 2.0**-52 * (abs(psi) + xm)  # psi + X_m >= 0, rounded up
     return 1.01 * (p + math.sqrt(p * p + 2.0 * gamma * c)) / gamma + 1e-9
@@ -346,8 +317,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     """heyoka from flight to flight (the impact rule and the checks in the floor event's callback,
     :class:`_Flights`), in propagations of CHUNK_FLIGHTS flight bounds; see the module docstring for the
     settings and failure rules."""
-    ta, flights, cfg, (rho, pa, pb, xi_eq), dev, eta0 = _started(params, initial, setting, checked=True)
-    gamma = params.gamma
+    ta, flights, cfg, dev = _started(params, initial, setting, checked=True)
+    gamma, law, xi_eq = params.gamma, params.spring, params.xi_eq
     flights.reset(max_events, float(cfg["cpu_budget"]))
     samples = None if sample_times is None else np.asarray(sample_times, dtype=float)
     y_out = None if samples is None else np.full(samples.shape, np.nan)
@@ -356,7 +327,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     while len(flights.t) < max_events and ta.time < t_max:
         t0 = ta.time
         x, u, v, eta = ta.state
-        t_stop = min(t_max, t0 + CHUNK_FLIGHTS * flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa))
+        t_stop = min(t_max, t0 + CHUNK_FLIGHTS * flight_bound(x, u, v, xi_eq + eta, gamma, law))
         dense = samples is not None and bool(np.any((samples >= t0) & (samples <= t_stop)))
         outcome, _, _, nsteps, c_out, _ = ta.propagate_until(t_stop, c_output=dense)
         steps += nsteps
@@ -369,9 +340,9 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
             break  # (b) before (a): a dip found during the propagation is named as such
         # missed_impact (a): the flight under way has outlived the bound from its start
         k = len(flights.t)
-        x, u, v, eta = (dev.x, dev.xdot, dev.xidot, eta0) if k == 0 else (
+        x, u, v, eta = (dev.x, dev.xdot, dev.xidot, dev.eta) if k == 0 else (
             0.0, flights.u[-1], flights.v[-1], flights.eta[-1])
-        bound = flights.t_prev + flight_bound(x, u, v, xi_eq + eta, gamma, rho, pa)
+        bound = flights.t_prev + flight_bound(x, u, v, xi_eq + eta, gamma, law)
         if ta.time > bound:
             flights.note("missed_impact", k, f"no event before the flight bound t = {bound!r} "
                          f"(x = {ta.state[0]!r}): an impact was skipped")
@@ -385,8 +356,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
         method="heyoka", setting=dict(setting or {}), t=np.array(flights.t), xdot=np.array(flights.u),
         cpu_time=cpu, failure=flights.failure, failure_index=flights.index, t_end=flights.t_prev, y=y_out,
         extra={"xidot": np.array(flights.v), "eta": np.array(flights.eta), "steps": steps,
-               "reason": flights.reason, "law": {"rho": rho, "a": pa, "b": pb}, "cooldown": _active_cooldown(ta),
-               "start": {"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": eta0, "xi_eq": xi_eq}},
+               "reason": flights.reason, "law": law.attrs(), "cooldown": _active_cooldown(ta),
+               "start": {"x": dev.x, "xdot": dev.xdot, "xidot": dev.xidot, "eta": dev.eta, "xi_eq": xi_eq}},
     )
 
 
@@ -394,9 +365,8 @@ METHOD = MethodSpec(
     name="heyoka",
     run=run,
     settings_doc=(
-        "rho, a, b: power-law spring xi'' = -rho xi|xi|^a - 2 mu xi'|xi|^b (default: params.spring; linear 1, 0, 0); "
-        "tol (2^-52); cooldown: terminal-event cooldown (None: heyoka's automatic one); high_accuracy (False); "
+        "the spring law: params.spring's symbolic form; tol (2^-52); cooldown: terminal-event cooldown (None: heyoka's automatic one); high_accuracy (False); "
         "cpu_budget: process seconds (inf)"
     ),
-    laws=("linear", "power"),
+    needs=SYMBOLIC_LAW,
 )

@@ -3,16 +3,23 @@
 No event location: every step of length h is a theta-method step of the
 measure differential inclusion, with the floor impulse p (on the lower mass
 only) solving a one-contact complementarity problem at velocity level with
-Newton's impact law.  With q = (x, y), v = (x', y'), unit masses and the
-linear forces f(q, v) = -K q - C v + b of eq. ``dimensionless-eq-motion``
-(K = [[1/2, -1/2], [-1/2, 1/2]], C = mu K / (1/2), b = (-gamma - 1/2, -gamma + 1/2)):
+Newton's impact law.  With q = (x, y), v = (x', y'), unit masses and the forces
+of the spring law (:mod:`bounce.springs.base`) f(q, v) = (-gamma + S, -gamma - S),
+S = f(xi) + 2 mu xi' g(xi) (eq. ``dimensionless-eq-motion`` for the linear law):
 
     v_{k+1} - v_k = h [theta f(q_{k+1}, v_{k+1}) + (1 - theta) f(q_k, v_k)] + (p, 0),
     q_{k+1}      = q_k + h [theta v_{k+1} + (1 - theta) v_k],
 
-i.e. W v_{k+1} = v_free-rhs + (p, 0) with the constant W = I + h theta C + h^2 theta^2 K.
-The contact is in the index set when the predicted gap x_k + g_p h x'_k <= 0
-(g_p = ``gap_prediction``, 1/2 as Siconos' default gamma), and then
+with f(q_{k+1}, v_{k+1}) linearised at the step's start, as Siconos' MoreauJeanOSI does for nonlinear
+Lagrangian systems (one Newton step): with the stiffness K = -df/dq = f'(xi)/2 [[1, -1], [-1, 1]] and the
+damping C = -df/dv = mu g(xi) [[1, -1], [-1, 1]] at q_k (the term of g' in df/dq is left out of K: an
+approximate Jacobian, which the step's first order overall tolerates),
+
+    W (v_{k+1} - v_k) = h f(q_k, v_k) - h^2 theta K v_k + (p, 0),   W = I + h theta C + h^2 theta^2 K,
+
+W^-1 = [[1 + s, s], [s, 1 + s]] / (1 + 2 s), s = h theta mu g + h^2 theta^2 f'/2.  For the linear law f is
+linear, so this is the theta-method itself (K, C constant).  The contact is in the index set when the
+predicted gap x_k + g_p h x'_k <= 0 (g_p = ``gap_prediction``, 1/2 as Siconos' default gamma), and then
 
     0 <= U_{k+1} + e U_k  _|_  p >= 0,     U = x' (normal velocity), e = ``restitution``,
 
@@ -50,9 +57,9 @@ from numba import njit
 
 from ._stepping import (
     DONE, F_ENDLESS, F_GAIN, FAIL, FAIL_IDX, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
-    drive, energy_excess, fell_through, sample_step, sorted_samples, unsort,
+    drive, energy_excess, fell_through, law_arguments, sample_step, sorted_samples, unsort,
 )
-from .base import MethodResult, MethodSpec
+from .base import ANY_LAW, MethodResult, MethodSpec
 
 DEFAULTS = {
     "dt": 1e-3, "theta": 0.5, "restitution": 1.0, "gap_prediction": 0.5, "max_contact": 10.0,
@@ -65,37 +72,31 @@ X, U, Y, V, T_IN, E_MIN, X_MIN = range(7)
 N_IMPULSE = N_COMMON_SLOTS  # steps with a nonzero impulse
 
 
-def _matrices(gamma, mu, h, theta):
-    K = np.array([[0.5, -0.5], [-0.5, 0.5]])
-    C = np.array([[mu, -mu], [-mu, mu]])
-    b = np.array([-gamma - 0.5, -gamma + 0.5])
-    W = np.eye(2) + h * theta * C + h * h * theta * theta * K
-    return K, C, b, np.linalg.inv(W)
-
-
-@njit(cache=True)
-def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, Winv, n_steps, t_max, max_events, max_pen,
-             max_contact, energy_tol, t_out, v_out, e_out, dur_out, samples, y_samples):
+@njit
+def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, n_steps, t_max, max_events, max_pen,
+             max_contact, energy_tol, t_out, v_out, e_out, dur_out, samples, y_samples,
+             force, stiffness, damping, potential, c, xi_eq, v_eq):
     x, u, y, v = fs[X], fs[U], fs[Y], fs[V]
-    w11, w12, w21, w22 = Winv[0, 0], Winv[0, 1], Winv[1, 0], Winv[1, 1]
     n = ist[N_STEP]
     for _ in range(n_steps):
         t0 = n * h
         if t0 >= t_max:
             ist[DONE] = 1
             break
-        # forces at step start: f = -K q - C v + b
-        d = 0.5 * (x - y)
-        dv = mu * (u - v)
-        f0x = -d - dv - gamma - 0.5
-        f0y = d + dv - gamma + 0.5
-        # K v_k, for q_{k+1} = q_k + h (1-theta) v_k + h theta v_{k+1} inside f_{k+1}
-        kvx = 0.5 * (u - v)
-        # rhs of W v_{k+1} = v_k + h theta (-K q_k - h (1-theta) K v_k + b) + h (1-theta) f_k + (p, 0)
-        rx = u + h * theta * (-d - h * (1.0 - theta) * kvx - gamma - 0.5) + h * (1.0 - theta) * f0x
-        ry = v + h * theta * (d + h * (1.0 - theta) * kvx - gamma + 0.5) + h * (1.0 - theta) * f0y
-        ufree = w11 * rx + w12 * ry
-        vfree = w21 * rx + w22 * ry
+        # forces at step start, f = (-gamma + S, -gamma - S), and the stiffness and damping of the linearisation
+        xi = 0.5 * ((y - x) - 1.0)
+        m = mu * damping(xi, c)
+        spring = force(xi, c) + m * (v - u)
+        kk = 0.5 * stiffness(xi, c)
+        # W dv = h f_k - h^2 theta K v_k, W^-1 = [[1 + s, s], [s, 1 + s]] / (1 + 2 s)
+        s = h * theta * m + h * h * theta * theta * kk
+        w11 = (1.0 + s) / (1.0 + 2.0 * s)
+        w21 = s / (1.0 + 2.0 * s)
+        kv = h * h * theta * kk * (u - v)
+        rx = h * (-gamma + spring) - kv
+        ry = h * (-gamma - spring) + kv
+        ufree = u + w11 * rx + w21 * ry
+        vfree = v + w21 * rx + w11 * ry
         p = 0.0
         if x + g_pred * h * u <= 0.0:  # index set: predicted gap closed
             viol = ufree + e_rest * u
@@ -132,7 +133,7 @@ def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, Winv, n_steps, t_max,
             i = ist[N_CONTACT] - 1
             v_out[i] = u
             dur_out[i] = t0 - fs[T_IN]
-            e = energy_excess(x, u, y, v, gamma)
+            e = energy_excess(x, u, y, v, gamma, potential, c, xi_eq, v_eq)
             e_out[i] = e
             ist[IN_CONTACT] = 0
             if e - fs[E_MIN] > energy_tol * fs[E_MIN]:
@@ -162,37 +163,41 @@ def _setting(setting):
 
 
 @functools.cache
-def _warm():
+def _warm(law):
+    """Compile the kernel for ``law``'s physics outside any timed region (once per law and process)."""
+    from ..model import Parameters
+
     fs = np.zeros(7)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
     ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     buf = np.zeros(2)
-    _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, np.eye(2), 10, 1.0, 2, 0.1, 10.0, 1e-3,
-             buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1))
+    _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, 10, 1.0, 2, 0.1, 10.0, 1e-3,
+             buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1),
+             *law_arguments(Parameters(0.01, 0.01, law)))
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
     """Moreau--Jean time-stepping; see the module docstring for the setting keys."""
-    _warm()
+    _warm(params.spring)
     cfg = _setting(setting)
     st = initial.to_state(params) if hasattr(initial, "to_state") else initial
     gamma, mu = params.gamma, params.mu
     h, theta = float(cfg["dt"]), float(cfg["theta"])
-    _, _, _, Winv = _matrices(gamma, mu, h, theta)
+    law = law_arguments(params)
     samples, order = sorted_samples(sample_times)
     y_s = np.full(samples.shape, np.nan)
     t_out, v_out, e_out, dur_out = (np.full(max_events, np.nan) for _ in range(4))
     fs = np.zeros(7)
     fs[X], fs[U], fs[Y], fs[V] = st.x, st.xdot, st.y, st.ydot
-    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma)
+    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma, law[3], *law[4:])
     fs[X_MIN] = st.x
     ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     budget = float(cfg["cpu_budget"])
     failure, failure_index, cpu = drive(
-        lambda: _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]), Winv,
+        lambda: _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]),
                  CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]), float(cfg["max_contact"]),
-                 float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s),
+                 float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s, *law),
         ist, budget,
     )
     n = int(ist[N_CONTACT])
@@ -214,4 +219,5 @@ METHOD = MethodSpec(
         "x + 0.5 h x' <= 0); max_contact (10 time units); max_penetration (0.1); energy_tol (1e-3 relative rise of "
         "E - E_m after a contact); cpu_budget (process seconds, inf)"
     ),
+    needs=ANY_LAW,
 )

@@ -6,15 +6,16 @@ spring-dashpot.  Here the floor acts on the lower mass only, with the force
 
     F_c = k_n (-x) - c_n x'   while x < 0   (0 otherwise; no clamping, as in the Hooke model),
 
-added to the right-hand side of the x equation of eq. ``dimensionless-eq-motion``
-(units: k_n in units of 2k, the ball's own spring being 1/2 in x'' = -x/2 + ...).
+added to the right-hand side of the x equation x'' = -gamma + S of the spring law
+(S = f(xi) + 2 mu xi' g(xi), the law's physics, :mod:`bounce.springs.base`; eq. ``dimensionless-eq-motion``
+for the linear law; units: k_n in units of 2k, the linear ball's own spring being 1/2 in x'' = -x/2 + ...).
 The paper's floor is elastic, so c_n = 0 by default; then the contact is a half
 oscillation of angular frequency omega_n = sqrt(k_n) (+ O(1) corrections) lasting
 ~ pi/omega_n, with overlap ~ |x'|/omega_n.
 
 Integrator: velocity Verlet (kick-drift-kick) with the velocity-dependent forces
-(the ball's damping mu and the dashpot c_n, both linear in the velocities)
-taken implicitly in the closing half kick -- a 2x2 linear solve, so the scheme
+(the ball's damping mu g(xi) and the dashpot c_n, both linear in the velocities at the step's
+new positions) taken implicitly in the closing half kick -- a 2x2 linear solve, so the scheme
 stays symmetric and of order 2 on smooth motion (LAMMPS evaluates them at the
 half-step velocity instead, which is first order in mu dt).  The floor force is
 only C^0 at x = 0 (its derivative jumps), so the contact start and end are
@@ -58,9 +59,9 @@ from numba import njit
 
 from ._stepping import (
     DONE, F_ENDLESS, F_GAIN, FAIL, FAIL_IDX, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
-    drive, energy_excess, fell_through, sample_step, sorted_samples, unsort,
+    drive, energy_excess, fell_through, law_arguments, sample_step, sorted_samples, unsort,
 )
-from .base import MethodResult, MethodSpec
+from .base import ANY_LAW, MethodResult, MethodSpec
 
 DEFAULTS = {
     "stiffness": 1.0e6, "damping": 0.0, "dt": None, "omega_dt": 0.1, "max_penetration": 0.1,
@@ -94,10 +95,11 @@ def hermite_root(x0, x1, d0, d1):
     return s, dp
 
 
-@njit(cache=True)
-def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, max_contact, energy_tol,
-             t_out, v_out, e_out, dur_out, samples, y_samples):
-    """Up to n_steps Verlet steps; updates the state arrays fs (float) and ist (int) in place."""
+@njit
+def _advance(fs, ist, gamma, mu, k, cn, dt, n_steps, t_max, max_events, max_pen, max_contact, energy_tol,
+             t_out, v_out, e_out, dur_out, samples, y_samples, force, stiffness, damping, potential, c, xi_eq, v_eq):
+    """Up to n_steps Verlet steps; updates the state arrays fs (float) and ist (int) in place.  The spring: the law's
+    force, damping and potential of coefficients c (``stiffness`` unused: the kick is explicit in the positions)."""
     x, u, y, v, ax, ay = fs[X], fs[U], fs[Y], fs[V], fs[AX], fs[AY]
     h2 = 0.5 * dt
     n = ist[N_STEP]
@@ -111,23 +113,26 @@ def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, 
         vh = v + h2 * ay
         x1 = x + dt * uh
         y1 = y + dt * vh
-        # closing kick, implicit in the (linear) velocity dependence
-        px = -0.5 * x1 - gamma - 0.5 + 0.5 * y1
-        py = -0.5 * y1 - gamma + 0.5 + 0.5 * x1
+        # closing kick, implicit in the velocities (the damping is linear in them at the new positions)
+        xi1 = 0.5 * ((y1 - x1) - 1.0)
+        spring = force(xi1, c)
+        m = mu * damping(xi1, c)
+        px = -gamma + spring
+        py = -gamma - spring
         cc = 0.0
         if x1 < 0.0:
             px += -k * x1
-            cc = c
-        a11 = 1.0 + h2 * (mu + cc)
-        a12 = -h2 * mu
-        a22 = 1.0 + h2 * mu
+            cc = cn
+        a11 = 1.0 + h2 * (m + cc)
+        a12 = -h2 * m
+        a22 = 1.0 + h2 * m
         r1 = uh + h2 * px
         r2 = vh + h2 * py
         det = a11 * a22 - a12 * a12
         u1 = (a22 * r1 - a12 * r2) / det
         v1 = (a11 * r2 - a12 * r1) / det
-        ax1 = px - (mu + cc) * u1 + mu * v1
-        ay1 = py - mu * v1 + mu * u1
+        ax1 = px - (m + cc) * u1 + m * v1
+        ay1 = py - m * v1 + m * u1
         n += 1
         t1 = n * dt
         sample_step(ist, samples, y_samples, t0, t1, dt, y, y1, v, v1)
@@ -150,7 +155,7 @@ def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, 
                 i = ist[N_CONTACT] - 1
                 v_out[i] = dp / dt
                 dur_out[i] = t0 + s * dt - fs[T_IN]
-                e = energy_excess(x1, u1, y1, v1, gamma)
+                e = energy_excess(x1, u1, y1, v1, gamma, potential, c, xi_eq, v_eq)
                 e_out[i] = e
                 ist[IN_CONTACT] = 0
                 if e - fs[E_MIN] > energy_tol * fs[E_MIN]:
@@ -174,12 +179,13 @@ def _advance(fs, ist, gamma, mu, k, c, dt, n_steps, t_max, max_events, max_pen, 
     fs[X], fs[U], fs[Y], fs[V], fs[AX], fs[AY] = x, u, y, v, ax, ay
 
 
-def accelerations(x, u, y, v, gamma, mu, k, c):
-    """x'', y'' of the soft-floor model at one state."""
-    fc = (-k * x - c * u) if x < 0.0 else 0.0
-    ax = -mu * u - 0.5 * x - gamma - 0.5 + 0.5 * y + mu * v + fc
-    ay = -mu * v - 0.5 * y - gamma + 0.5 + 0.5 * x + mu * u
-    return ax, ay
+def accelerations(x, u, y, v, params, k, cn):
+    """x'', y'' of the soft-floor model at one state (the law's force and damping)."""
+    law = params.spring
+    xi = 0.5 * ((y - x) - 1.0)
+    spring = law.restoring(xi) + params.mu * law.damping_factor(xi) * (v - u)
+    fc = (-k * x - cn * u) if x < 0.0 else 0.0
+    return -params.gamma + spring + fc, -params.gamma - spring
 
 
 def _setting(setting):
@@ -193,38 +199,41 @@ def _setting(setting):
 
 
 @functools.cache
-def _warm():
-    """Compile (or load from cache) the kernel outside any timed region."""
+def _warm(law):
+    """Compile the kernel for ``law``'s physics outside any timed region (once per law and process)."""
+    from ..model import Parameters
+
     fs = np.zeros(9)
     fs[X] = 1e-3
     fs[E_MIN] = 1.0
     ist = np.zeros(N_COMMON_SLOTS, dtype=np.int64)
     buf = np.zeros(2)
     _advance(fs, ist, 0.01, 0.01, 1e4, 0.0, 1e-3, 10, 1.0, 2, 0.1, 10.0, 1e-3, buf, buf.copy(), buf.copy(),
-             buf.copy(), np.zeros(1), np.zeros(1))
+             buf.copy(), np.zeros(1), np.zeros(1), *law_arguments(Parameters(0.01, 0.01, law)))
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
     """Soft floor + velocity Verlet; see the module docstring for the setting keys."""
-    _warm()
+    _warm(params.spring)
     cfg = _setting(setting)
     st = initial.to_state(params) if hasattr(initial, "to_state") else initial
     gamma, mu = params.gamma, params.mu
-    k, c, dt = float(cfg["stiffness"]), float(cfg["damping"]), cfg["dt"]
+    k, cn, dt = float(cfg["stiffness"]), float(cfg["damping"]), cfg["dt"]
+    law = law_arguments(params)
     samples, order = sorted_samples(sample_times)
     y_s = np.full(samples.shape, np.nan)
     t_out, v_out, e_out, dur_out = (np.full(max_events, np.nan) for _ in range(4))
     fs = np.zeros(9)
     fs[X], fs[U], fs[Y], fs[V] = st.x, st.xdot, st.y, st.ydot
-    fs[AX], fs[AY] = accelerations(st.x, st.xdot, st.y, st.ydot, gamma, mu, k, c)
-    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma)
+    fs[AX], fs[AY] = accelerations(st.x, st.xdot, st.y, st.ydot, params, k, cn)
+    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma, law[3], *law[4:])
     fs[X_MIN] = st.x
     ist = np.zeros(N_COMMON_SLOTS, dtype=np.int64)
     ist[IN_CONTACT] = 1 if st.x < 0.0 else 0
     budget = float(cfg["cpu_budget"])
     failure, failure_index, cpu = drive(
-        lambda: _advance(fs, ist, gamma, mu, k, c, dt, CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]),
-                 float(cfg["max_contact"]), float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s),
+        lambda: _advance(fs, ist, gamma, mu, k, cn, dt, CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]),
+                 float(cfg["max_contact"]), float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s, *law),
         ist, budget,
     )
     n = int(ist[N_CONTACT])
@@ -246,4 +255,5 @@ METHOD = MethodSpec(
         "max_penetration (0.1 L); max_contact (10 time units); energy_tol (1e-3 relative rise of E - E_m at "
         "contact exits); cpu_budget (process seconds, inf)"
     ),
+    needs=ANY_LAW,
 )

@@ -1,14 +1,16 @@
 """Method "scipy": ``scipy.integrate.solve_ivp`` with a terminal floor event, restarted at each impact.
 
 The obvious way to simulate the ball (paper, section 2): integrate the
-first-order system in s = (x, x', y, y') of eq. ``dimensionless-eq-motion``,
+first-order system in s = (x, x', y, y') of the spring law's physics (:mod:`bounce.springs.base`),
 
-    x'' = -mu x' - x/2 - gamma - 1/2 + y/2 + mu y'
-    y'' = -mu y' - y/2 - gamma + 1/2 + x/2 + mu x',
+    x'' = -gamma + S,   y'' = -gamma - S,   S = f(xi) + mu g(xi) (y' - x'),   xi = (y - x - 1)/2
 
-i.e. s' = A s + b, stop at the terminal event "x crosses 0 downwards", apply
-the impact rule x' -> -x' (y, y' unchanged) and call ``solve_ivp`` again from
-the post-impact state.  Radau/BDF/LSODA get the (constant) Jacobian A.
+(:func:`dynamics`; the linear law, f(xi) = xi and g = 1, gives eq. ``dimensionless-eq-motion``,
+x'' = -mu x' - x/2 - gamma - 1/2 + y/2 + mu y'), stop at the terminal event "x crosses 0 downwards",
+apply the impact rule x' -> -x' (y, y' unchanged) and call ``solve_ivp`` again from the post-impact
+state.  Radau/BDF/LSODA get the Jacobian from the law's f' and g (the term of g' left out: exact for the
+linear law, whose Jacobian is constant; otherwise an approximation, which only slows the implicit
+solvers' Newton iterations, not their accuracy).
 
 The one solve_ivp driver of the project (the speed benchmark ``benchmarks/bench_simulator.py`` uses it
 too).  Lessons learnt:
@@ -27,7 +29,7 @@ Failure detection (inside the method, from the integrator's own output only):
 
 ``missed_impact``  on every step [t_i, t_i+1] of a flight (the last one ending
     at the located event) x is interpolated by the quintic Hermite polynomial
-    through x, x', x'' at both ends (the solver's own values; x'' = (A s + b)_1),
+    through x, x', x'' at both ends (the solver's own values; x'' from the right-hand side),
     sampled at 16 interior points and refined by a parabola through the
     smallest sample: an interior local minimum below -``dip_tol`` (default
     ``atol``, the solver's own accuracy claim for x) is a crossing of the floor
@@ -56,9 +58,9 @@ event; DOP853 at rtol >= 1e-6 can take a 30-unit step over the exactly parabolic
 mode is dormant, so the error estimate sees only rounding) and misplace the first impact by ~1e-4
 relative.
 
-E - E_m is computed as xi'^2/2 + psi'^2/2 + eta^2/2 + gamma x with eta = xi + gamma
-(exact rewrite of eq. ``tot-mech-energy`` minus eq. ``Emin``), which avoids the
-cancellation of E - E_m when both are ~ -gamma^2/2.
+E - E_m is computed as xi'^2/2 + psi'^2/2 + D(eta) + gamma x with eta = xi - xi_eq and D the law's
+divergence (:meth:`bounce.springs.base.SpringLaw.divergence`; eta^2/2 for the linear law, an exact rewrite of
+eq. ``tot-mech-energy`` minus eq. ``Emin``, which avoids the cancellation of E - E_m when both are ~ -gamma^2/2).
 """
 
 from __future__ import annotations
@@ -69,7 +71,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .base import MethodResult, MethodSpec
+from .base import ANY_LAW, MethodResult, MethodSpec
 
 SOLVERS = ("RK23", "RK45", "DOP853", "LSODA", "Radau", "BDF")
 IMPLICIT = ("LSODA", "Radau", "BDF")
@@ -98,20 +100,44 @@ def _hermite_basis(s):
 _H = _hermite_basis(_S)[:, None, :]  # (6, 1, samples)
 
 
-def system(gamma: float, mu: float):
-    """A, b of s' = A s + b, s = (x, x', y, y')."""
-    A = np.array([[0.0, 1.0, 0.0, 0.0], [-0.5, -mu, 0.5, mu], [0.0, 0.0, 0.0, 1.0], [0.5, mu, -0.5, -mu]])
-    b = np.array([0.0, -gamma - 0.5, 0.0, -gamma + 0.5])
-    return A, b
+def dynamics(params):
+    """(rhs, jac, x_acceleration) of s' = F(s), s = (x, x', y, y'), from the law's physics (module docstring):
+    ``rhs(t, s)`` and ``jac(t, s)`` as solve_ivp calls them, ``x_acceleration(states)`` x'' at each column of a
+    (4, n) array of states (the missed-impact check's Hermite data).  The law's functions run as Python (their ``py_func``, the same
+    arithmetic as the compiled ones), bound once here: two calls per right-hand side, cheaper than the dispatch
+    of a compiled right-hand side taking them as arguments (measured: ~4x)."""
+    law = params.spring
+    force, stiffness, damping = (fn.py_func for fn in law.physics[:3])
+    c = law.coefficients
+    gamma, mu = params.gamma, params.mu
+
+    def rhs(t, s):
+        x, u, y, v = s
+        xi = 0.5 * ((y - x) - 1.0)
+        spring = force(xi, c) + mu * damping(xi, c) * (v - u)
+        return np.array([u, -gamma + spring, v, -gamma - spring])
+
+    def jac(t, s):
+        x, u, y, v = s
+        xi = 0.5 * ((y - x) - 1.0)
+        k, m = 0.5 * stiffness(xi, c), mu * damping(xi, c)
+        return np.array([[0.0, 1.0, 0.0, 0.0], [-k, -m, k, m], [0.0, 0.0, 0.0, 1.0], [k, m, -k, -m]])
+
+    def x_acceleration(states):
+        xi = (0.5 * ((states[2] - states[0]) - 1.0)).tolist()
+        rel = (states[3] - states[1]).tolist()
+        return np.array([-gamma + force(z, c) + mu * damping(z, c) * w for z, w in zip(xi, rel)])
+
+    return rhs, jac, x_acceleration
 
 
-def energy_excess(s, gamma: float) -> float:
-    """E - E_m of state s = (x, x', y, y')."""
+def energy_excess(s, params) -> float:
+    """E - E_m of state s = (x, x', y, y') (module docstring)."""
     x, u, y, v = s
     a = 0.5 * (v - u)  # xi'
     p = 0.5 * (v + u)  # psi'
-    eta = 0.5 * ((y - x) - 1.0) + gamma
-    return 0.5 * (a * a + p * p + eta * eta) + gamma * x
+    eta = 0.5 * ((y - x) - 1.0) - params.xi_eq
+    return 0.5 * (a * a + p * p) + params.spring.divergence(eta, params.gamma) + params.gamma * x
 
 
 class _OverBudget(Exception):
@@ -141,7 +167,7 @@ def floor_event(t_restart: float | None, deadline: float = math.inf):
     return g
 
 
-def _hermite_min(t, y, A, b):
+def _hermite_min(t, y, x_acceleration):
     """Smallest interior local minimum of x over the steps t[i]..t[i+1] (quintic Hermite in x, x', x'').
 
     Returns (x_min, t_min), or (inf, nan) if no step has a sampled minimum strictly inside.
@@ -149,7 +175,7 @@ def _hermite_min(t, y, A, b):
     if t.size < 2:
         return math.inf, math.nan
     h = np.diff(t)
-    acc = A[1] @ y + b[1]
+    acc = x_acceleration(y)
     x0, x1 = y[0, :-1, None], y[0, 1:, None]
     d0, d1 = (y[1, :-1] * h)[:, None], (y[1, 1:] * h)[:, None]
     c0, c1 = (acc[:-1] * h * h)[:, None], (acc[1:] * h * h)[:, None]
@@ -184,19 +210,8 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     """solve_ivp restart loop; see the module docstring for the setting keys and failure rules."""
     cfg = _setting(setting)
     st = initial.to_state(params) if hasattr(initial, "to_state") else initial
-    gamma, mu = params.gamma, params.mu
-    A, b = system(gamma, mu)
-    A1, A3 = A[1].copy(), A[3].copy()
-    b1, b3 = b[1], b[3]
-
-    def rhs(t, s):
-        return np.array([s[1], A1 @ s + b1, s[3], A3 @ s + b3])
-
-    kw = {}
-    if cfg["solver"] == "LSODA":
-        kw["jac"] = lambda t, s: A
-    elif cfg["solver"] in ("Radau", "BDF"):
-        kw["jac"] = A
+    rhs, jac, x_acceleration = dynamics(params)
+    kw = {"jac": jac} if cfg["solver"] in IMPLICIT else {}
     samples = None if sample_times is None else np.asarray(sample_times, dtype=float)
     y_out = None if samples is None else np.full(samples.shape, np.nan)
     t_imp, v_imp, e_imp = [], [], []
@@ -204,7 +219,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     t0 = 0.0
     flight_start = 0.0
     on_floor = s0[0] == 0.0  # the start is a restart from the floor (e.g. a post-impact state)
-    e_min = energy_excess(s0, gamma)
+    e_min = energy_excess(s0, params)
     failure, failure_index = "", -1
     n_short = 0
     nfev = nsteps = ncalls = 0
@@ -241,7 +256,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
             if m.any():
                 y_out[m] = sol.sol(samples[m])[2]
         if cfg["check"]:
-            xmin, _ = _hermite_min(sol.t, sol.y, A, b)
+            xmin, _ = _hermite_min(sol.t, sol.y, x_acceleration)
             if xmin < -cfg["dip_tol"]:
                 failure, failure_index = "missed_impact", len(t_imp)
                 break
@@ -258,7 +273,7 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
         tau = t_end - flight_start
         t_imp.append(t_end)
         v_imp.append(s0[1])
-        e = energy_excess(s0, gamma)
+        e = energy_excess(s0, params)
         e_imp.append(e)
         k = len(t_imp) - 1
         n_short = n_short + 1 if tau < STALL_DT * max(1.0, t_end) else 0
@@ -293,4 +308,5 @@ METHOD = MethodSpec(
         "check: dip/fell-through tests on (True); dip_tol (atol), floor_tol (1e-9), energy_tol (1e-3, relative rise of "
         "E - E_m above its running minimum); span: longest single solve_ivp call (1e4); max_step (inf)"
     ),
+    needs=ANY_LAW,
 )

@@ -7,8 +7,9 @@ with one line naming the key, when the config has
 2. a number that is NaN or infinite (JSON Schema's ``number`` admits both: here it does not),
    or outside its range (the schema's ``minimum``/``maximum``, with the reason in its
    ``description``);
-3. a scene whose state the model refuses (below the floor, ...): every scene is built with
-   :mod:`bounce.model`'s own validation, so the pipeline and the CLI refuse the same inputs;
+3. a scene whose state the model refuses (below the floor, ...) or that lies outside its spring law's
+   supported domain (equilibrium below the floor, ...): every scene is built with :mod:`bounce.model`'s own
+   validation and :func:`bounce.model.check_supported`, so the pipeline and the CLI refuse the same inputs;
 4. a dangling or shadowing cross-reference: a figure, study or check naming a dataset that no
    rule produces, or a scene named like a derived dataset.
 
@@ -126,12 +127,20 @@ def _best_error(errors):
 
 
 def load_schema(path: Path | str = SCHEMA) -> dict:
+    """The schema of ``path`` with its ``spring`` definition built from the law registry
+    (:func:`bounce.springs.schema_fragment`: a law is one registry line, its config keys follow)."""
+    from ..springs import schema_fragment
+
     with open(path) as fh:
-        return yaml.safe_load(fh)
+        schema = yaml.safe_load(fh)
+    schema["$defs"]["spring"] = {**schema["$defs"]["spring"], **schema_fragment()}
+    return schema
 
 
 def _check_scenes(config: dict) -> None:
-    """Build every scene's parameters and initial state with the model's own validation."""
+    """Build every scene's parameters and initial state with the model's own validation, inside the supported
+    domain (:func:`bounce.model.check_supported`)."""
+    from ..model import check_supported
     from ..scenes import scene_initial, scene_parameters
 
     for section, scenes in (("scenes", config.get("scenes", {})),
@@ -142,7 +151,10 @@ def _check_scenes(config: dict) -> None:
                                   f"({', '.join(RESERVED_SCENE_NAMES)} or a sweep's gathered file); choose another")
             try:
                 params = scene_parameters(spec)
-                scene_initial(spec, params)
+                if params.spring.solver is None:
+                    raise InputError(f"spring law {params.spring.name!r} has no exact solver (bounce.springs), which "
+                                     f"simulates every scene")
+                check_supported(params, scene_initial(spec, params).deviations(params))
             except InputError as err:
                 raise ConfigError(f"{section}.{name}: {err}") from None
 

@@ -139,7 +139,8 @@ def run_power_events(
 def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float = math.inf,
                    energy_stop: float = 0.0):
     """Simulate the power-law spring ``spring`` (a :class:`bounce.springs.power.PowerSpring`, or the
-    linear law as rho = 1, a = b = 0).
+    linear law as rho = 1, a = b = 0: the law's ``series_coefficients``) inside its supported domain
+    (:func:`bounce.model.check_supported`, refused up front otherwise).
 
     ``initial``: a :class:`bounce.model.State`, or :class:`bounce.model.Deviations` whose
     eta is xi - xi_eq of this law.  Returns a :class:`bounce.trajectory.Trajectory`
@@ -147,13 +148,13 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
     Exact to rounding: series flights with rigorous tails and a root finder that
     cannot skip an impact (:mod:`bounce.series.flight`).
     """
-    from ..model import Deviations, InputError, State
+    from ..model import Deviations, InputError, Parameters, State, check_supported
+    from ..springs import LINEAR
 
     max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
-    if params.spring != spring and params.spring.name != "linear":
+    if params.spring not in (spring, LINEAR):
         raise InputError(f"spring must be the law of params ({params.spring!r}) or given with linear params, got {spring!r}")
-    rho, a, b = (1.0, 0.0, 0.0) if spring.name == "linear" else (spring.rho, spring.a, spring.b)
-    law = law_array(rho, a, b, params.mu, params.gamma)
+    law = law_array(*spring.series_coefficients(), params.mu, params.gamma)
     xi_eq = float(law[L_XI_EQ])
     if isinstance(initial, State):
         x, u, a = initial.x, initial.xdot, 0.5 * (initial.ydot - initial.xdot)
@@ -162,6 +163,8 @@ def simulate_power(params, spring, initial, max_events: int = 1000, t_max: float
         x, u, a, eta = initial.x, initial.xdot, initial.xidot, initial.eta
     else:
         raise InputError(f"initial must be a State or Deviations, got {type(initial).__name__}")
+    # the domain of the law (bounce.springs.power), the same check and message as the CLI's
+    check_supported(Parameters(params.gamma, params.mu, spring), Deviations(x, u, a, eta), t_max)
     return run_into_trajectory(
         lambda *buffers: run_power_events(x, u, a, eta, law, max_events, t_max, energy_stop, *buffers),
         params, initial, (max_events, t_max, energy_stop), "power-law root finder",

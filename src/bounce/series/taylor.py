@@ -29,7 +29,7 @@ division by |xi0|.
 Rigorous tail (Cauchy's majorant argument).  Let D be the closed polydisc
 |z - xi0| <= Rz, |p - v0| <= Rp in C^2 with Rz = d |xi0|, 0 < d < 1 (so sigma z keeps a
 positive real part and (S) is holomorphic in D; any Rz for a = b = 0; d = min(0.95, 2/a),
-:func:`disc_fraction`: 0.95 for Hertz).  On D the right side of (S) is bounded by M = M0 + M1 Rp with
+:func:`bounce.springs.power.disc_fraction`: 0.95 for Hertz).  On D the right side of (S) is bounded by M = M0 + M1 Rp with
 
     M0 = c0 + r ((1+d) |xi0|)^(a+1) + 2 m |v0| ((1+d) |xi0|)^b,   M1 = 2 m ((1+d) |xi0|)^b
 
@@ -90,10 +90,8 @@ from decimal import Decimal, localcontext
 import numpy as np
 from numba import njit
 
-#: largest Cauchy disc radius as a fraction of |xi0| (the singularity xi = 0 is at distance |xi0|): the
-#: step near xi = 0 is ~ theta d |xi0| / |xi'| and the majorant grows as (1 + d)^(a+1) with the law's
-#: fraction d = min(DISC, 2/a) (:func:`disc_fraction`).
-DISC = 0.95
+from ..springs.power import disc_fraction  # the law's Cauchy disc fraction (its domain uses it too)
+
 #: highest degree of a general (long-flight) step.
 DEGREE_LONG = 32
 #: highest degree of the hot path before it hands over to general steps.
@@ -127,30 +125,12 @@ def root_denominator(a: float, b: float) -> int:
     return 0
 
 
-def disc_fraction(a: float) -> float:
-    """d = min(DISC, 2/a): the Cauchy disc |z - xi0| <= d |xi0| of the module docstring.
-
-    Any 0 < d < 1 keeps the disc off xi = 0.  Where the restoring force limits the radius,
-    r_c^2 ~ d / ((1 + d)^(a+1) |xi0|^a r) is largest at d = 1/a, and the fixed DISC would shrink the steps
-    by ~(1.95 / (1 + 1/a))^((a+1)/2) / sqrt(0.95 a) (a = 24: ~500, a = 50: ~2e6: a drop of the a = 50 law
-    did not reach its second impact in 14 min); where the speed limits it, r_c ~ d |xi0| / |xi'| wants d large.  2/a
-    was the fastest of 1/a, 2/a, 4/a and DISC over a = 1.5 .. 24 (2e4 impacts of the drops from
-    xi = xi_eq and xi = 0, b = 0.5, gamma = mu = 0.01: against DISC within 10% for a = 2.5, 3, 1.2x faster
-    at a = 5, 1.6x at a = 8, 3.7x at a = 12, 160-200x at a = 24; ``python benchmarks/bench_power_core.py
-    --disc``).  The damping's factor
-    (1 + d)^b is left to DISC: with b large the damping is weak near equilibrium and a smaller d only
-    shortened the steps (b = 12: 4x slower at d = 2/b).  Laws with a <= 2/DISC (Hertz, the linear law)
-    keep DISC.
-    """
-    return min(DISC, 2.0 / a if a > 0.0 else math.inf)
-
-
 def law_array(rho: float, a: float, b: float, mu: float, gamma: float, disc: float | None = None):
     """The spring law and the flight constants as one float array for the kernels.
 
     Holds rho, a + 1, b, mu, gamma, xi_eq = -(gamma/rho)^(1/(a+1)) (eq.
     ``nonlin-equilibrium-xi``), the factors (1 + d)^(a+1), (1 + d)^b of the
-    majorant with the disc fraction d (:func:`disc_fraction` unless ``disc`` gives one, 0 < d < 1; also
+    majorant with the disc fraction d (:func:`bounce.springs.power.disc_fraction` unless ``disc`` gives one, 0 < d < 1; also
     held), whether the restoring (a = 0) and damping (b = 0) terms are analytic, and the
     residual gamma - rho |xi_eq|^(a+1) of the rounded xi_eq (~1 ulp of gamma; 0 for the
     linear law), computed at 50 digits so that the force near equilibrium

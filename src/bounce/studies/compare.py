@@ -1,9 +1,10 @@
 """Measurement layer of the speed-vs-accuracy study: run methods over settings sweeps, score them
 against the exact solver, build xarray datasets, draw the work-precision and stability-map charts.
 
-Both spring laws: on a scene with ``spring: {law: power, ...}`` (eq. ``eq-motion-nonlin-psi-xi``)
-the reference is bounce's power-law solver (Taylor-series flights, exact to rounding) and only the
-methods whose ``laws`` include it run (heyoka; a sweep naming another is refused with its name).
+Every spring law with an exact solver: on a scene with ``spring: {law: power, ...}`` (eq.
+``eq-motion-nonlin-psi-xi``) the reference is bounce's power-law solver (Taylor-series flights, exact to
+rounding); a method runs a scene whose law has what the method ``needs`` (:mod:`bounce.methods.base`: the
+general-purpose methods any law, heyoka a symbolic form; a sweep naming another is refused with its name).
 
 Why error metrics need care: the transient of the drop gamma = mu = 0.01 from
 psi(0) = 6 is chaotic (near-grazing flights multiply state errors by orders of
@@ -20,7 +21,7 @@ meaningful:
    relative error of the flight time and of the next post-impact speed;
 3. ``err_y_rms``: RMS error of y(t) over a fixed window (inside the horizon; only
    with ``y_window``, which needs the exact solver's dense output: linear spring);
-4. the asymptotic constant n tau_n c (c = mu/3 on the linear spring, Theorem
+4. the asymptotic constant n tau_n c (c = mu g(xi_eq)/3: mu/3 on the linear spring, Theorem
    main_thm: -> 1; alpha gamma on the power law, :func:`asymptotic_scale`),
    median over the last ``window`` flights before each requested n and at the
    largest n the method reached, against the exact solver at the same n: the law
@@ -57,13 +58,13 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..analysis.theory import nonlin_alpha_limit
 from ..kinds import IMPACT
 from ..methods import registry
 from ..methods.base import FAILURES, MethodResult
 from ..model import Deviations, Parameters, State
 from ..scenes import scene_initial, scene_parameters
 from ..simulate import simulate
+from ..springs import spring_from_attrs
 from .base import Study, study_slice
 
 log = logging.getLogger(__name__)
@@ -125,8 +126,8 @@ def _law_attrs(params: Parameters, ref: "Reference") -> dict:
     return {"gamma": params.gamma, "mu": params.mu, "spring_law": params.spring.name,
             **{f"spring_{k}": float(v) for k, v in params.spring.parameters().items()},
             "asym_scale": ref.asym_scale,
-            "asym_scale_note": "c with n tau_n c -> 1: mu/3 (linear spring, Theorem main_thm) or alpha gamma "
-                               "(power law, alpha of the Discussion's map)"}
+            "asym_scale_note": "c with n tau_n c -> 1: mu g(xi_eq)/3, mu/3 for the linear spring (Theorem main_thm), "
+                               "alpha gamma for the power law (alpha of the Discussion's map)"}
 
 
 def _json(setting: dict) -> str:
@@ -185,14 +186,12 @@ class Reference:
 
 
 def asymptotic_scale(params: Parameters) -> float:
-    """c with n tau_n c -> 1: mu/3 for the linear spring (Theorem main_thm), alpha gamma for the power law,
-    alpha = lim alpha_n of the Discussion's map (:func:`bounce.analysis.theory.nonlin_alpha_limit`; tau_n ~ Xdot_n/gamma
-    assumed as in the linear case).  Only a normalisation: every error of metric (4) is relative to the
-    exact solver's value at the same n, in which c cancels."""
-    if params.spring.name == "linear":
-        return params.mu / 3.0
-    law = params.spring.parameters()
-    return params.gamma * nonlin_alpha_limit(params.gamma, params.mu, law["rho"], law["a"], law["b"])
+    """c with n tau_n c -> 1: c = mu g(xi_eq)/3, the damping of the law at its equilibrium.  The linear spring
+    (g = 1): mu/3 (Theorem main_thm); the power law: alpha gamma, alpha = mu (3 gamma)^-1 (gamma/rho)^(b/(a+1)) =
+    mu |xi_eq|^b/(3 gamma), the limit of the Discussion's map (:func:`bounce.analysis.theory.nonlin_alpha_limit`;
+    tau_n ~ Xdot_n/gamma assumed as in the linear case).  Only a normalisation: every error of metric (4) is
+    relative to the exact solver's value at the same n, in which c cancels."""
+    return params.mu * params.spring.damping_factor(params.xi_eq) / 3.0
 
 
 def asymptotic_constant(t: np.ndarray, scale: float, n_at: int, window: int, n0: int = 0) -> float:
@@ -251,7 +250,7 @@ def _check_laws(runs: list, params, study: str) -> None:
     for method in dict.fromkeys(r["method"] for r in runs):
         if not methods[method].supports(params):
             raise ValueError(f"{study}.sweeps: method {method!r} does not simulate the {params.spring.name!r} spring "
-                             f"of the scene (its laws: {', '.join(methods[method].laws)})")
+                             f"of the scene (it needs {methods[method].needs.what})")
 
 
 def measure_run(method: str, setting: dict, params, initial, ref: Reference, wp: dict) -> dict:
@@ -594,12 +593,7 @@ def _scene_text(ds: xr.Dataset) -> str:
     """The scene in words for a title: spring law, gamma, mu and the drop height (mathtext)."""
     from ..figures.common import tex_num
 
-    if ds.attrs["spring_law"] == "linear":
-        law = "linear spring"
-    else:
-        name = "Hertz spring" if ds.attrs["spring_a"] == ds.attrs["spring_b"] == 0.5 else "power-law spring"
-        law = name + r" $\rho=%s$, $a=%s$, $b=%s$" % tuple(
-            tex_num(ds.attrs[k]) for k in ("spring_rho", "spring_a", "spring_b"))
+    law = spring_from_attrs(ds.attrs).title(tex_num)
     initial = json.loads(ds.attrs["initial"])
     if "psi" in initial:
         drop = r"drop from $\psi(0)=%s$" % tex_num(initial["psi"])
