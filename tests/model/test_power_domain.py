@@ -109,6 +109,7 @@ def test_at_the_overdamping_edge_sticky_phases_end():
         check_supported(Parameters(gamma, 1.01 * mu / 0.999, spring), Deviations(0.0, 0.0, 0.0, 0.0))
 
 
+@pytest.mark.slow  # ~7 s of CPU (a subprocess near the time bound): --all and CI
 def test_at_the_work_edge_flights_end():
     """A drop whose flights come close to WORK_MAX (a stiff a = 0 spring with non-dyadic b = 3.08, the slowest
     crossings of xi = 0 measured) finishes its first events within the time bound the domain promises (~10 s a

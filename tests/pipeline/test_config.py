@@ -8,6 +8,7 @@ names the key.
 """
 
 import copy
+import functools
 import subprocess
 import sys
 from pathlib import Path
@@ -16,10 +17,21 @@ import pytest
 import yaml
 from snakemake.utils import update_config
 
-from bounce.pipeline.config import ConfigError, validated
+from bounce.pipeline.config import ConfigError, load_schema, validated
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+@functools.cache
+def _schema() -> dict:
+    return load_schema()
+
+
+def _validated(config: dict) -> dict:
+    """validated() against config/schema.yaml read once for the module (load_schema: ~0.1 s a call); the default
+    path, which reads it, is test_shipped_configs_are_valid's."""
+    return validated(config, copy.deepcopy(_schema()))
 
 
 def _with(path: str, value):
@@ -42,17 +54,17 @@ def test_shipped_configs_are_valid():
 
 def test_a_check_reads_a_sweep_only_if_the_config_has_it():
     """A sweep's name is a dataset a check may declare (its gathered file) while config ``sweeps`` runs it."""
-    assert "asymptotic-atlas" in validated(CONFIG)["checks"]["main-theorem"]["inputs"]
+    assert "asymptotic-atlas" in _validated(CONFIG)["checks"]["main-theorem"]["inputs"]
     cfg = copy.deepcopy(CONFIG)
     del cfg["sweeps"]["asymptotic-atlas"]
     with pytest.raises(ConfigError, match="checks.main-theorem.inputs.*no dataset named 'asymptotic-atlas'"):
-        validated(cfg)
+        _validated(cfg)
 
 
 def test_defaults_come_from_the_schema():
     cfg = copy.deepcopy(CONFIG)
     del cfg["reduced"]["horizon"]["dps"]
-    assert validated(cfg)["reduced"]["horizon"]["dps"] == 40
+    assert _validated(cfg)["reduced"]["horizon"]["dps"] == 40
     assert "dps" not in cfg["reduced"]["horizon"]  # the caller's dict is not modified
 
 
@@ -65,7 +77,7 @@ def test_defaults_come_from_the_schema():
 ])
 def test_unknown_key_is_named(path):
     with pytest.raises(ConfigError) as err:
-        validated(_with(path, 1.0))
+        _validated(_with(path, 1.0))
     message = str(err.value)
     assert "unknown key" in message and repr(path.rsplit(".", 1)[1]) in message
     assert message.startswith(path.rsplit(".", 1)[0].replace(".0.", ".0."))
@@ -87,7 +99,7 @@ def test_unknown_key_is_named(path):
 ])
 def test_bad_number_is_named(path, value, words):
     with pytest.raises(ConfigError, match=words) as err:
-        validated(_with(path, value))
+        _validated(_with(path, value))
     assert str(err.value).startswith(path)
 
 
@@ -108,7 +120,7 @@ def test_bad_number_is_named(path, value, words):
 def test_spring_domain_figures_and_samples_are_closed(path, value, words):
     """One line naming the key (before: accepted, or a KeyError traceback when the Snakefile read ``figures``)."""
     with pytest.raises(ConfigError, match=words) as err:
-        validated(_with(path, value))
+        _validated(_with(path, value))
     assert "\n" not in str(err.value)
 
 
@@ -138,13 +150,13 @@ def test_every_configured_figure_is_required():
             read.add(key)
             return CONFIG["figures"][key]
 
-    figure_table({**validated(CONFIG), "figures": Recorder()})
+    figure_table({**_validated(CONFIG), "figures": Recorder()})
     assert set(load_schema()["properties"]["figures"]["required"]) == read
 
 
 def test_scene_below_the_floor_is_refused_by_the_model():
     with pytest.raises(ConfigError, match=r"^scenes\.rigid-fall: x0 must be >= 0"):
-        validated(_with("scenes.rigid-fall.initial", {"psi": 0.0, "psidot": 0.0, "xi": 0.5, "xidot": 0.0}))
+        _validated(_with("scenes.rigid-fall.initial", {"psi": 0.0, "psidot": 0.0, "xi": 0.5, "xidot": 0.0}))
 
 
 @pytest.mark.parametrize("path, value, words", [
@@ -158,7 +170,7 @@ def test_scene_below_the_floor_is_refused_by_the_model():
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):
-        validated(_with(path, value))
+        _validated(_with(path, value))
 
 
 def test_snakemake_dry_run_stops_with_one_line(tmp_path):
