@@ -5,11 +5,11 @@ with the linear spring, half with the power law over its wide range, every numbe
 NaN, inf, subnormal, huge), runs each in a worker process within a time bound (``fuzzing.Runner``) and
 counts how they fell: clean refusals, valid runs, defects (the contract is in ``tests/fuzzing.py``).
 
-A defect of a power-law case is counted apart when its symptom is the power law's domain, which the CLI and
-the API do not state and enforce yet (issue 25 items 5 and 6): accepted with the equilibrium below the
-floor, no result within the time bound (or the worker died), or the power-law solver raising (its root
-finder not converging, an arithmetic exception).  Every defect is listed with the command or call that
-reproduces it; the exit status is 1 if any defect is not of that kind.
+Every defect is listed with the command or call that reproduces it; the exit status is 1 if there is any.
+A case with no result within the time bound is run once more with ``--slow-timeout`` (the power law's
+supported domain promises each phase within ~10 s of one core, :mod:`bounce.springs.power` item 5, and a
+case may ask for 40 phases): it is counted "valid run, slow" when it then passes the contract, a defect
+otherwise.
 
     python benchmarks/fuzz_cli.py                         # 2000 CLI vectors, 300 API calls, 10 s each, seed 25
     python benchmarks/fuzz_cli.py --cli 20000 --api 3000 --seed 7
@@ -18,6 +18,7 @@ reproduces it; the exit status is 1 if any defect is not of that kind.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import shlex
 import sys
 import time
@@ -29,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 import fuzzing  # noqa: E402
 from hypothesis import HealthCheck, Phase, given, seed, settings  # noqa: E402
 
-ITEMS_5_6 = "power-law domain (issue 25 items 5, 6)"
+SLOW = "valid run, slow (past the time bound)"
 
 
 def distinct(strategy, n: int, first_seed: int) -> list:
@@ -53,18 +54,6 @@ def distinct(strategy, n: int, first_seed: int) -> list:
     raise RuntimeError(f"only {len(cases)} distinct examples of {strategy!r}")
 
 
-def power_domain_symptom(kind: str, case, what: str) -> bool:
-    """Is this defect one of the power law's unstated domain (see the module docstring)?"""
-    law = fuzzing.power_law(kind, case)
-    if law is None:
-        return False
-    gamma, rho, a = law
-    with_power_solver = "power-law" in what or what.startswith(("ZeroDivisionError", "OverflowError",
-                                                                 "FloatingPointError", "ValueError"))
-    return ("equilibrium below the floor" in what or what.startswith(("no result within", "the worker died"))
-            or with_power_solver or not fuzzing.equilibrium_depth(gamma, rho, a) < 0.5)
-
-
 def command(kind: str, case) -> str:
     """The command or call that reproduces a case."""
     if kind == "cli":
@@ -80,6 +69,8 @@ def main() -> int:
     parser.add_argument("--cli", type=int, default=2000, help="CLI argument vectors (default 2000)")
     parser.add_argument("--api", type=int, default=300, help="API calls (default 300)")
     parser.add_argument("--timeout", type=float, default=10.0, help="seconds per case (default 10)")
+    parser.add_argument("--slow-timeout", type=float, default=900.0,
+                        help="seconds for the second run of a case past --timeout (default 900)")
     parser.add_argument("--seed", type=int, default=25, help="seed of the examples (default 25)")
     args = parser.parse_args()
 
@@ -93,22 +84,27 @@ def main() -> int:
     print(f"{len(plan)} cases, worker ready in {time.perf_counter() - start:.1f} s, {args.timeout:g} s per case",
           flush=True)
     tally: Counter = Counter()
-    found: dict = {fuzzing.DEFECT: [], ITEMS_5_6: []}
+    found: dict = {fuzzing.DEFECT: [], SLOW: []}
+    slow_runner = fuzzing.Runner(args.slow_timeout)
     try:
         for kind, law, case in plan:
             outcome = runner.run(kind, case)
             verdict = outcome.verdict
-            if verdict == fuzzing.DEFECT and power_domain_symptom(kind, case, outcome.what):
-                verdict = ITEMS_5_6
+            if outcome.what.startswith("no result within"):
+                outcome = slow_runner.run(kind, case)
+                verdict = SLOW if outcome.verdict == fuzzing.VALID else outcome.verdict
+                if verdict == SLOW:
+                    outcome = dataclasses.replace(outcome, what=f"{outcome.seconds:.0f} s, {outcome.what}")
             tally[kind, law, verdict] += 1
             if verdict in found:
                 found[verdict].append(f"{outcome.what}\n      {command(kind, case)}")
     finally:
         runner.close()
+        slow_runner.close()
     seconds = time.perf_counter() - start
 
     columns = [(kind, law) for kind in ("cli", "api") for law in ("linear", "power")]
-    verdicts = (fuzzing.REFUSED, fuzzing.VALID, fuzzing.DEFECT, ITEMS_5_6)
+    verdicts = (fuzzing.REFUSED, fuzzing.VALID, SLOW, fuzzing.DEFECT)
     print(f"\n{'':40s}" + "".join(f"{kind.upper() + ' ' + law:>12s}" for kind, law in columns) + f"{'all':>8s}")
     for verdict in verdicts:
         row = [tally[kind, law, verdict] for kind, law in columns]

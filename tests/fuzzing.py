@@ -98,8 +98,13 @@ LAW_FIELDS = ("rho", "a", "b")
 
 
 def equilibrium_depth(gamma: float, rho: float, a: float) -> float:
-    """|xi_eq| = (gamma/rho)^(1/(a+1)) of the power law: the equilibrium is above the floor iff it is < 1/2."""
-    return (gamma / rho) ** (1.0 / (a + 1.0))
+    """|xi_eq| = (gamma/rho)^(1/(a+1)) of the power law: the equilibrium is above the floor iff it is < 1/2
+    (inf where the law has no such equilibrium: rho <= 0, a <= -1, or values that are not numbers)."""
+    try:
+        depth = (gamma / rho) ** (1.0 / (a + 1.0))
+    except (ZeroDivisionError, OverflowError, TypeError):
+        return math.inf
+    return depth if isinstance(depth, float) and math.isfinite(depth) else math.inf
 
 
 @st.composite

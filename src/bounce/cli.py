@@ -234,7 +234,7 @@ def _spring(args):
     missing = [name for name in own if getattr(args, name) is None]
     if missing:
         ranges = "; ".join(f"{p.name} in {p.interval()}" for p in law.PARAMETERS)
-        raise UsageError(f"--spring {args.spring} needs {' '.join('--' + n for n in missing)} ({ranges})")
+        raise UsageError(f"--spring {args.spring} needs {' '.join('--' + n for n in missing)} (allowed ranges: {ranges})")
     return spring_from_spec({"law": args.spring, **{name: getattr(args, name) for name in own}})
 
 

@@ -134,7 +134,7 @@ def test_its_physics_and_equilibrium(duffing):
         f_diff = (law.restoring(xi + h) - law.restoring(xi - h)) / (2 * h)
         assert abs(v_diff - (law.restoring(xi) + law.k * xi * h * h)) < 1e-11  # V' = f
         assert abs(f_diff - (law.stiffness(xi) + law.k * h * h)) < 1e-11  # f' = stiffness
-    with pytest.raises(Exception, match=r"spring k must be a finite number in \[0, 1000\]"):
+    with pytest.raises(Exception, match=r"spring k must be a finite number \(allowed range: \[0, 1000\]"):
         DuffingSpring(k=-1.0)
 
 
@@ -211,8 +211,8 @@ def test_cli_runs_it_with_a_general_purpose_method(duffing, tmp_path, capsys):
     (["--spring", "duffing", "--k", "2", "--method", "exact"], "has no exact solver"),
     (["--spring", "duffing", "--k", "2", "--method", "contact-switch"], "--method must be one of heyoka, "
                                                                           "moreau-jean, penalty, scipy for the duffing"),
-    (["--spring", "duffing"], "--spring duffing needs --k (k in [0, 1000])"),
-    (["--spring", "duffing", "--k", "-1", "--method", "scipy"], "spring k must be a finite number in [0, 1000]"),
+    (["--spring", "duffing"], "--spring duffing needs --k (allowed ranges: k in [0, 1000])"),
+    (["--spring", "duffing", "--k", "-1", "--method", "scipy"], "spring k must be a finite number (allowed range: [0, 1000]"),
     (["--k", "1"], "--k: only with --spring duffing"),
     (["--spring", "duffing", "--k", "1", "--method", "scipy", "--stream"], "--stream: only with the exact solver"),
 ])

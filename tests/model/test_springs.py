@@ -78,8 +78,8 @@ def test_a_law_without_an_exact_solver_is_refused_by_simulate():
 
 @pytest.mark.parametrize("args, words", [
     (["--spring", "power", "--rho", "1", "--a", "0.5"], "--spring power needs --b"),
-    (["--spring", "power", "--rho", "-1", "--a", "0.5", "--b", "0.5"], "spring rho must be a finite number in (0, inf)"),
-    (["--spring", "power", "--rho", "1", "--a", "-0.5", "--b", "0.5"], "spring a must be a finite number in [0, 50]"),
+    (["--spring", "power", "--rho", "-1", "--a", "0.5", "--b", "0.5"], "spring rho must be a finite number (allowed range: (0, inf)"),
+    (["--spring", "power", "--rho", "1", "--a", "-0.5", "--b", "0.5"], "spring a must be a finite number (allowed range: [0, 50]"),
     (["--rho", "2"], "only with --spring power"),
     (["--spring", "power", "--rho", "1", "--a", "0.5", "--b", "nan"], "--b: must be a finite number (allowed range: [0, 50])"),
     (["--spring", "power", "--rho", "nan", "--a", "0.5", "--b", "0.5"], "--rho: must be a finite number (allowed range: (0, inf))"),

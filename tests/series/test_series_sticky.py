@@ -90,6 +90,20 @@ def test_linear_law_infinite_sticky_phase(gamma, mu):
     assert ref.kind_names == tr.kind_names == ("sticky_start",)
 
 
+@pytest.mark.parametrize("gamma, mu", [(1e-6, 1.0), (1e-12, 1.0), (1e-6, 0.5), (0.01, 1.0), (0.01, 0.0)])
+def test_linear_law_sticky_start_at_natural_length(gamma, mu):
+    """At rest on the floor with the spring at its natural length (psi = xi = 0: xi0 = 0 and xi' = 0, the
+    series' state scale max(|xi0|, |xi'|) is zero): the phase is proved infinite as by the closed form. The
+    analytic law's Cauchy disc took that zero scale (plus 1e-300) and divided by its radius^4 = 0
+    (ZeroDivisionError, found by benchmarks/fuzz_cli.py at mu = 1)."""
+    p = Parameters(gamma, mu)
+    start = State.from_psi_xi(0.0, 0.0, 0.0, 0.0)
+    ref = simulate(p, start, max_events=3)
+    tr = simulate_power(p, LINEAR, start, max_events=3)
+    assert ref.stop_reason == tr.stop_reason == "sticky_forever"
+    assert ref.kind_names == tr.kind_names == ("sticky_start",)
+
+
 def test_never_detach_criterion_is_sharp_without_damping():
     """mu = 0, linear law: F's maximum over the sticky orbit is eta_amp - 2 gamma with
     eta_amp = sqrt(eta^2 + 2 xi'^2) (eta'' = -eta/2); just below the level the phase is proved

@@ -115,7 +115,7 @@ class Parameter:
         except (TypeError, ValueError, OverflowError):
             number = math.nan
         if isinstance(value, bool) or not self.contains(number):
-            raise InputError(f"spring {self.name} must be a finite number in {self.interval()} ({self.doc}), "
+            raise InputError(f"spring {self.name} must be a finite number (allowed range: {self.interval()}; {self.doc}), "
                              f"got {value!r}")
         return number
 
