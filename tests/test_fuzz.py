@@ -12,11 +12,12 @@ the power law's; the three longer than 5 s are marked slow).
 
 from __future__ import annotations
 
+import math
 import os
 
 import pytest
 from fuzzing import DEFECT, POWER_SUPPORTED, Runner, api_cases, command_lines
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 
 MAX_EXAMPLES = int(os.environ.get("BOUNCE_FUZZ_EXAMPLES", "300"))
 #: seconds one case may take (a case of these ranges takes ~0.1 s on a loaded 2-core machine; one still running
@@ -58,6 +59,11 @@ def test_cli_fuzz_power_law(runner, argv):
 
 @SETTINGS
 @given(case=api_cases())
+# phases spanning 2^537 (a first phase of 3e-162): t 1 ulp from fsum(tau), as documented (tie of rounding)
+@example(case=(0.4999999999999999, 0.0, None, "deviations", (5e-324, 0.0, -3.0, 0.0), 4, math.inf))
+# at rest at the natural length, a = b = 0, critical damping: was a ZeroDivisionError in the series solver
+@example(case=(1e-06, 1.0, {"law": "power", "rho": 1.0, "a": 0.0, "b": 0.0}, "psi", (0.0, 0.0, 0.0, 0.0), 15,
+               math.inf))
 def test_simulate_fuzz(runner, case):
     """``simulate`` over the same domain: an InputError naming the parameter and its range, or a
     trajectory whose records are finite and physically valid."""

@@ -35,7 +35,8 @@ without an exact solver) and writes the impacts it reports, with the law's
 attributes (:func:`bounce.io.method_dataset`).
 
 Event times ``t`` are correctly rounded sums of the exact phase durations
-``tau``; a phase shorter than half an ulp of t (late in the asymptotic regime
+``tau`` (within 1 ulp when the phases span more than 2^53 in size,
+:mod:`bounce.exact.events`); a phase shorter than half an ulp of t (late in the asymptotic regime
 after very long runs, or a chattering sticky onset) leaves t unchanged, so
 consecutive event times may coincide while tau stays exact.
 """

@@ -36,7 +36,10 @@ x ~ 1e-300 therefore comes to rest (sticky_start) instead of chattering through
 1e6 impacts of speed 1e-151 in 1e-143 time units.
 
 Time is accumulated with Neumaier's compensated sum so that t stays correctly
-rounded after 1e6+ short flights; the flight durations are stored exactly.  A
+rounded after 1e6+ short flights; the flight durations are stored exactly.  The
+one exception is a tie of rounding decided by bits the compensation term lost:
+only when the phases span more than 2^53 in size (a first phase of 3e-162, then
+phases of order 1), and then t is within 1 ulp of the exact sum.  A
 phase shorter than half an ulp of t leaves t unchanged (consecutive event times
 coincide, tau stays exact): the netCDF attribute of t says so.
 
