@@ -61,6 +61,34 @@ def test_threshold_by_bisection_is_r_c():
     assert R_C <= hi and abs(lo - R_C) <= 0.02 * R_C, (lo, hi, R_C)
 
 
+@pytest.mark.parametrize("drift", [0.0, 1.0, 1e3])
+@pytest.mark.parametrize("factor", [0.5, 0.97])
+def test_three_grains_collapse_whatever_their_common_velocity(factor, drift):
+    """A collapse of the whole gas (every grain in the cluster) is a collapse in every Galilean frame, whether the
+    float64 clock or the speed criterion ends it: the cooled-below-rounding test (GasRun._cooled) does not take it."""
+    p = RigidParameters(3, "ring", 0.0, factor * R_C, ell=1e6, size=0.0)
+    res = simulate_rigid(p, RigidState([0.0, 0.0, 1.0], [-0.1 + drift, drift, -1.0 + drift]), max_events=100_000,
+                         t_max=1e3)
+    assert res.stop_reason == "collapse", res.message
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_a_cooling_ring_is_not_reported_as_collapsed(seed):
+    """Ten points on a ring at r = 0.95 (McNamara and Young: fewer than the ~88 grains a collapse needs) cool without
+    end (Haff's law): their relative speeds fall to the rounding of the common velocity left by the rounding of the
+    zero momentum, ~1e-16 of it, after ~700 collisions per grain, where the speed criterion fired and the run was
+    reported as an inelastic collapse.  It is reported as cooled below rounding, with the collision intervals growing."""
+    rng = np.random.default_rng(seed)
+    x = np.sort(rng.uniform(0.0, 10.0, 10))
+    v = rng.standard_normal(10)
+    v -= v.mean()
+    res = simulate_rigid(RigidParameters(10, "ring", 0.0, 0.95, ell=10.0, size=0.0), RigidState(x, v),
+                         max_events=200_000)
+    assert res.stop_reason == "cooled_below_rounding", res.message
+    assert res.collapse is None and "not a collapse" in res.message
+    assert np.diff(res.t)[-64:].sum() >= np.diff(res.t)[-128:-64].sum()
+
+
 @pytest.mark.parametrize("r", [0.3, 0.5, 0.9])
 def test_ball_on_the_floor_collapses_at_the_geometric_sum(r):
     gamma, v0 = 0.01, 1.0

@@ -28,8 +28,9 @@ FLOOR_PAIR = -1
 
 # why a run ended
 (STOP_EVENTS, STOP_TIME, STOP_QUIET, STOP_OVERLAP, STOP_STICKY, STOP_COLLAPSE,
- STOP_FAILED) = range(7)
-STOP_NAMES = ("max_events", "t_max", "no_more_events", "overlap", "sticky", "collapse", "root_finder_failed")
+ STOP_FAILED, STOP_COOLED) = range(8)
+STOP_NAMES = ("max_events", "t_max", "no_more_events", "overlap", "sticky", "collapse", "root_finder_failed",
+              "cooled_below_rounding")
 
 # slots of the int64 control array ``ctl`` a run carries between calls (the engines' state beside
 # the grain, slot and queue arrays): events recorded so far, why it stopped, the grain or slot the

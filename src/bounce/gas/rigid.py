@@ -26,9 +26,13 @@ pair collision is *unresolvable* if its approach speed is at most 8 ulps of the 
 8 eps (|x_i'| + |x_j'|).  The run stops (:data:`~bounce.gas.common.STOP_COLLAPSE`) at the first
 unresolvable collision or once :data:`COLLAPSE_RUN` unresolved events follow each other; the control
 array holds the lowest and highest grain of that run and its length, and the slot of an unresolvable
-collision (-1 for a stalled clock), t_end the time of the last event (``bounce.gas.simulate_rigid`` reports them).  Neither happens by coincidence in a gas that
-does not collapse: two consecutive events within one ulp of t, or a collision 1e-15 slower than its
-grains, are events of probability ~1e-16 or less.  Near r_c this decides at the precision float64
+collision (-1 for a stalled clock), t_end the time of the last event (``bounce.gas.simulate_rigid`` reports them).  Two
+consecutive events within one ulp of t are an event of probability ~1e-16 or less in a gas that does not
+collapse; a collision 1e-15 slower than its grains is not: a gas that cools without end (Haff's law) drifts
+with the rounding residue of its momentum, and its relative speeds reach that residue's rounding.  The front
+tells the two apart at such a stop (``GasRun._cooled``: the whole gas as cold, and the intervals between
+collisions not shrinking) and reports ``cooled_below_rounding`` instead of a collapse.  Positions are not
+wrapped on the ring: a drift of the whole gas by D costs the gaps ~eps D of absolute precision.  Near r_c this decides at the precision float64
 allows: a sequence that ends after more collisions (~pi / arg of the complex eigenvalue of the
 three-grain map) than it takes to shrink the speeds by 1e16 (~27) is reported as a collapse.
 """

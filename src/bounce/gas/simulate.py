@@ -26,10 +26,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
+from ..exact.flight import EPS
 from ..exact.oscillator import make_oscillator
 from .common import (
     C_EVENTS, C_HIGH, C_LOW, C_RUN, C_STOP, C_WHERE, CLOCK_SIZE, CTL_SIZE, GEOMETRY_NAMES, K_HI, K_LO, KIND_NAMES,
-    STOP_COLLAPSE, STOP_NAMES, STOP_OVERLAP, STOP_STICKY, Records,
+    STOP_COLLAPSE, STOP_COOLED, STOP_NAMES, STOP_OVERLAP, STOP_STICKY, Records, slot_grains,
 )
 from .dimer import GRAIN_FIELDS, G_A, G_ETA, G_U, G_X, SLOT_FIELDS, dimer_run, dimer_snapshot, dimer_start
 from .model import GasParameters, GasState, RigidParameters, RigidState
@@ -42,6 +43,11 @@ RIGID_FIELDS_NAMES = ("x", "xdot")
 #: most events one call records in memory, and the default chunk of the progress bar and the stream
 MAX_EVENTS = 10**10
 DEFAULT_CHUNK = 1 << 18
+#: event times kept for telling a collapse from a gas cooled below rounding (:meth:`GasRun.step`): two windows
+TREND_EVENTS = 64
+#: the whole gas is "cold" at a speed stop when no neighbouring pair moves apart or together faster than this many
+#: times the stop's rounding threshold 8 eps (|x_i'| + |x_j'|)
+COLD_FACTOR = 2.0**20
 
 
 def positive_int(name: str, value, largest: int, smallest: int = 1) -> int:
@@ -92,6 +98,7 @@ class GasRun:
             self.osc = make_oscillator(params.mu)
             self.sl = np.zeros((n, SLOT_FIELDS))
         self.records = None
+        self.times = np.full(2 * TREND_EVENTS + 1, np.nan)  # the last event times (rigid gas, :meth:`_cooled`)
         if arrays is not None:
             for name in self._state_names():
                 getattr(self, name)[...] = arrays[name]
@@ -108,7 +115,7 @@ class GasRun:
         self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
 
     def _state_names(self) -> tuple[str, ...]:
-        return ("g", "heap", "pos", "khi", "klo", "ctl", "clock") + (() if self.rigid else ("sl",))
+        return ("g", "heap", "pos", "khi", "klo", "ctl", "clock") + (("times",) if self.rigid else ("sl",))
 
     def arrays(self) -> dict[str, np.ndarray]:
         """The engine's whole state (grains, slots, queue, control): copies."""
@@ -140,12 +147,38 @@ class GasRun:
         else:
             k, snaps = dimer_run(self.geometry, p.n, p.gamma, p.wrap, self.t_max, *self.osc, self.g, self.sl,
                                  self.heap, self.pos, self.khi, self.klo, self.ctl, self.clock, m, *args)
+        if self.rigid:
+            self.times = np.concatenate([self.times, rec.t[:k]])[-self.times.size:]
+            if int(self.ctl[C_STOP]) == STOP_COLLAPSE and self.ctl[C_WHERE] >= 0 and self._cooled():
+                self.ctl[C_STOP] = STOP_COOLED
         self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
         if self.stop == "root_finder_failed":
             raise RuntimeError(f"the gas engine's root finder did not converge for contact {int(self.ctl[C_WHERE])} "
                                f"after event {self.events} (t = {self.t_end!r}); please report the parameters and "
                                f"initial state")
         return rec, k, snaps
+
+    def _cooled(self) -> bool:
+        """At a speed stop of the rigid gas (an approach speed within 8 ulps of its grains' speeds): has the whole
+        gas cooled to the rounding of its common velocity, rather than a cluster collapsed?
+
+        A cooling gas (Haff's law) drifts with the rounding residue of its momentum (~eps |x'|) while its relative
+        speeds decay without end, so in float64 they reach that residue's rounding, ~1e-16 of the drift, and the speed
+        criterion fires although no collapse happens (a 10-grain ring at r = 0.95 after ~700 collisions per grain).
+        Cooled: every neighbouring pair's relative speed is within COLD_FACTOR of the stop's threshold (no part of the
+        gas is still warm), and the collisions do not accumulate: the last TREND_EVENTS intervals between events sum
+        to no less than the TREND_EVENTS before them (in a collapse they shrink geometrically; in cooling they grow,
+        as t).  A collapse of the whole gas (every grain in one cluster) is told apart by the second test."""
+        v = self.final()["xdot"]
+        i, j, _ = slot_grains(int(self.ctl[C_WHERE]), self.params.n, self.geometry)
+        threshold = 8.0 * EPS * (abs(v[i]) + abs(v[j]))
+        spread = np.abs(np.diff(v)).max() if v.size > 1 else 0.0
+        if self.params.geometry == "ring" and v.size > 1:
+            spread = max(spread, abs(v[-1] - v[0]))
+        if not spread <= COLD_FACTOR * threshold or np.isnan(self.times).any():
+            return False
+        gaps = np.diff(self.times)
+        return gaps[TREND_EVENTS:].sum() >= gaps[:TREND_EVENTS].sum()
 
     @property
     def finished(self) -> bool:
@@ -174,6 +207,10 @@ class GasRun:
             what = "the floor" if self.geometry == 0 and where == self.params.n - 1 else f"pair {where}"
             return (f"{what}: a zero-speed contact that does not open at t = {t!r} (a sticky contact, eq. "
                     f"sticky-condition or its pair analogue; non-generic): the gas engine follows no sticky phase")
+        if code == STOP_COOLED:
+            return (f"cooled below rounding at t = {t!r}: the grains' relative speeds reached the rounding of their common "
+                    f"velocity (8 ulps of the colliding grains' speeds, with no warmer pair and no accumulation of "
+                    f"collisions: not a collapse, GasRun._cooled), {self.events} collisions in all")
         if code == STOP_COLLAPSE:
             run = (f"{int(self.ctl[C_RUN])} unresolved collisions in a row among grains {int(self.ctl[C_LOW])}.."
                    f"{int(self.ctl[C_HIGH])}, {self.events} collisions in all")
