@@ -167,3 +167,43 @@ def test_stiff_overdamped_sticky_phase_is_proved_infinite():
     tr = simulate(p, Deviations(x=0.0, xdot=0.0, xidot=-0.04008136490537849, eta=2.2130114781993875),
                   max_events=5, t_max=1e4)
     assert tr.kind_names == ("sticky_start",) and tr.stop_reason == "sticky_forever"
+
+
+def _sticky_cases():
+    """Starts that stick: eq. sticky-ic (detach or not), pressed on the floor, the infinite sticky event, a
+    trajectory sticking again after impacts (gamma = mu = 0.05), the stiff over-damped modes (mu >= 2)."""
+    cases = []
+    for gamma, mu in [(0.01, 0.01), (0.05, 0.05), (0.1, 0.5), (0.2, 1.0), (0.3, 1.5), (0.01, 2.0), (0.3, 3.0)]:
+        p = Parameters(gamma, mu)
+        cases += [(p, State.sticky_ic(p, eps=0.0), 3000), (p, State(0.0, 0.0, p.y_eq - 0.05, 0.01), 50)]
+    p = Parameters(6.089470548226049e-08, 27.606486975110645)
+    cases.append((p, Deviations(x=0.0, xdot=0.0, xidot=-0.04008136490537849, eta=2.2130114781993875), 5))
+    return cases
+
+
+@pytest.mark.parametrize("case", range(len(_sticky_cases())))
+def test_sticky_tables_built_on_demand_give_the_same_bits(case):
+    """run_events given empty tables for mu/sqrt(2) (as the contact Monte Carlo's compiled loop passes them)
+    builds them at its first sticky phase: every record and the stop reason are the bits of the run given
+    make_oscillator's tables (the t_max horizon included)."""
+    import math
+
+    from bounce.exact.events import SQRT2, run_events
+    from bounce.exact.oscillator import make_oscillator
+
+    p, start, events = _sticky_cases()[case]
+    d = start.deviations(p)
+    params, coefs = make_oscillator(p.mu)
+    sparams, scoefs = make_oscillator(p.mu / SQRT2)
+    for t_max in (math.inf, 3.0):
+        runs = []
+        for sp, sc in ((sparams, scoefs), (np.empty(0), np.empty((0, 0)))):
+            out = [np.full(events, np.nan) for _ in range(6)] + [np.full(events, -1, dtype=np.int8)]
+            n, stop, t_end = run_events(d.x, d.xdot, d.xidot, d.eta, p.gamma, params, coefs, sp, sc, events, t_max,
+                                        0.0, *out)
+            runs.append((n, stop, t_end, out))
+        (n, stop, t_end, out), (n2, stop2, t_end2, out2) = runs
+        assert (n, stop) == (n2, stop2) and np.array_equal(t_end, t_end2, equal_nan=True)
+        assert out[6][0] == STICKY_START or STICKY_START in out[6][:n]
+        for a, b in zip(out, out2):
+            assert np.array_equal(a, b, equal_nan=True)

@@ -74,7 +74,7 @@ from .flight import (
     oscillator_at,
     xi_derivatives,
 )
-from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO, make_oscillator
+from .oscillator import OVER, P_BRANCH, P_FREQ, P_LFAST, P_LSLOW, P_MU, P_RHO, make_oscillator, oscillator_tables
 from .short_flight import HANDOVER, MAX_DEGREE, short_flight
 
 
@@ -336,7 +336,9 @@ def run_events(
     when a sticky phase is proved infinite.  Output arrays (length >= max_events)
     receive per event: t, the duration of the phase ending at it, the state just
     after it (u = xdot, a = xi', eta = xi + gamma), E - E_m and the kind.
-    Returns ``(n_events, stop_reason, t_end)``.
+    Returns ``(n_events, stop_reason, t_end)``.  ``sparams, scoefs`` (the tables of mu/sqrt(2)) may be
+    empty (``scoefs.shape[0] == 0``): they are then built at the first sticky phase, once (compiled loops
+    over many dampings, whose trajectories rarely stick, save a table build per trajectory).
 
     ``carry`` (optional, float64[CARRY_SIZE]) chains calls: on return it holds the
     loop's whole state (slots ``C_*``); passed again with ``carry[C_RESUME] = 1`` the
@@ -352,6 +354,8 @@ def run_events(
     sticky = False
     t_start = 0.0
     stop = STOP_EVENTS
+    lazy_params = np.empty(0)  # the tables of mu/sqrt(2) when the caller left them to be built (see above)
+    lazy_coefs = np.empty((0, 0))
     if carry is not None and carry[C_RESUME] != 0.0:
         x0, u, a, eta = carry[C_X], carry[C_U], carry[C_A], carry[C_ETA]
         t_hi, t_lo, t_start = carry[C_T_HI], carry[C_T_LO], carry[C_T_START]
@@ -367,7 +371,12 @@ def run_events(
     while n < max_events:
         t_limit = t_max - (t_hi + t_lo)
         if sticky:
-            status, tau, a, eta = _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs)
+            if scoefs.shape[0] != 0:
+                status, tau, a, eta = _sticky_phase(a, eta, gamma, t_limit, sparams, scoefs)
+            else:
+                if lazy_coefs.shape[0] == 0:
+                    lazy_params, lazy_coefs = oscillator_tables(mu / SQRT2)
+                status, tau, a, eta = _sticky_phase(a, eta, gamma, t_limit, lazy_params, lazy_coefs)
             if status != FOUND:
                 stop = STOP_STICKY_FOREVER if status == NEVER else (
                     STOP_TIME if status == HORIZON else STOP_FAILED)

@@ -45,8 +45,13 @@ so the small parts keep a few ulps relative to themselves for every mu > 1
 subtraction to a few ulps of 1, which is what eq. (F) needs.  Nothing overflows
 for long flights and everything is continuous across mu = 1.
 
-An oscillator is a pair of arrays ``(params, coefs)`` made once per damping by
-:func:`make_oscillator`; the numba kernels take the two arrays.
+An oscillator is a pair of arrays ``(params, coefs)`` made once per damping, in
+compiled code, by :func:`oscillator_tables` (~16 us of CPU: the Taylor recurrence,
+then the degree table, 600 grid points x 3 Horner sums of 48 terms and 600 logs);
+the numba kernels take the two arrays.  Python callers use :func:`make_oscillator`
+(checked, cached, read-only); compiled loops over many dampings (the contact Monte
+Carlo, one damping per sample) call :func:`oscillator_tables` themselves.  The
+tables are the bits of the numpy builder they replaced (tests/exact/test_oscillator_tables.py).
 """
 
 from __future__ import annotations
@@ -68,7 +73,7 @@ UNDER, CRITICAL, OVER = 0.0, 1.0, 2.0
 
 
 def make_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
-    """Read-only, cached :func:`build_oscillator` (the tables take a few ms)."""
+    """Read-only, cached :func:`build_oscillator` (for Python callers that reuse a damping)."""
     return _cached_oscillator(float(mu))
 
 
@@ -80,7 +85,8 @@ def _cached_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
     return params, coefs
 
 
-def natural_frequency(mu: float) -> float:
+@njit(cache=True)
+def natural_frequency(mu):
     """omega = sqrt(1 - mu^2) (mu < 1) or kappa = sqrt(mu^2 - 1) (mu > 1) of eq. ``eq-motion-psi-xi``, within
     1.25 ulp: 1 - mu^2 directly for mu < 1/2 (mu^2 <= 1/4: one rounding beside 1), (1 - mu)(1 + mu) and
     (mu - 1)(mu + 1) from there (no cancellation near mu = 1).  The phase omega t of a flight of length t
@@ -94,7 +100,18 @@ def natural_frequency(mu: float) -> float:
 
 
 def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
-    """Coefficients of xi'' + 2 mu xi' + xi = 0 for the kernels of this module.
+    """Coefficients of xi'' + 2 mu xi' + xi = 0 for the kernels of this module: the checked front of
+    :func:`oscillator_tables` (mu a finite number >= 0, else ValueError)."""
+    mu = float(mu)
+    if not (mu >= 0.0 and math.isfinite(mu)):
+        raise ValueError(f"mu must be a finite number >= 0, got {mu!r}")
+    return oscillator_tables(mu)
+
+
+@njit(cache=True)
+def oscillator_tables(mu):
+    """Coefficients of xi'' + 2 mu xi' + xi = 0 for the kernels of this module (mu finite, >= 0: unchecked
+    here, see :func:`build_oscillator`; compiled, so that loops over many dampings build them in place).
 
     Returns ``(params, coefs)``: ``params`` holds mu, rho, the branch (0 under-,
     1 critically, 2 over-damped), omega = sqrt(1-mu^2) or kappa = sqrt(mu^2-1),
@@ -103,11 +120,9 @@ def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
     tms (j = 1) and omsd (j = 2); ``coefs[3, K]`` is the largest q = rho t for
     which truncating after t^K meets the tail rule (see :func:`_degree_thresholds`).
     Scaling t by a power of two is exact and keeps the coefficients ~1/k!
-    (unscaled, rho^k/k! overflows for mu > 2e7).
+    (unscaled, rho^k/k! overflows for mu > 2e7).  Every operation is the IEEE operation, in the same
+    order, of the numpy builder it replaces (tests/exact/test_oscillator_tables.py: the same bits).
     """
-    mu = float(mu)
-    if not (mu >= 0.0 and math.isfinite(mu)):
-        raise ValueError(f"mu must be a finite number >= 0, got {mu!r}")
     if mu < 1.0:
         branch, freq = UNDER, natural_frequency(mu)
         rho, lslow, lfast = 1.0, mu, mu
@@ -119,24 +134,28 @@ def build_oscillator(mu: float) -> tuple[np.ndarray, np.ndarray]:
         lfast = mu + freq
         lslow = 1.0 / lfast  # = mu - kappa, without cancellation
         rho = lfast
-    sigma = 2.0 ** round(math.log2(rho))
-    params = np.array([mu, rho, branch, freq, lslow, lfast, sigma], dtype=np.float64)
-
-    def series(z0: float, z1: float) -> np.ndarray:
-        """Taylor coefficients of z in the scaled time sigma t (z_k / sigma^k)."""
-        z = [z0, z1 / sigma]  # Python floats: the same IEEE operations as on float64, ~10x faster here
-        m = mu / sigma
-        for k in range(N_COEFS - 1):
-            z.append((-2.0 * m * (k + 1) * z[k + 1] - z[k] / sigma**2) / ((k + 2) * (k + 1)))
-        return np.array(z)
-
-    c, s = series(1.0, 0.0), series(0.0, 1.0)
+    log2_rho = math.log2(rho)
+    if not log2_rho < 1023.5:  # rho = inf for mu > ~1.3e154: (mu - 1)(mu + 1) overflows
+        raise ValueError("mu must be below ~1.3e154: the over-damped rate mu + sqrt(mu^2 - 1) overflows")
+    sigma = 2.0 ** round(log2_rho)  # round: half to even, as Python's
+    params = np.array([mu, rho, branch, freq, lslow, lfast, sigma])
+    # Taylor coefficients of c and S in the scaled time sigma t (z_k / sigma^k)
+    c = np.empty(N_COEFS + 1)
+    s = np.empty(N_COEFS + 1)
+    c[0], c[1] = 1.0, 0.0 / sigma
+    s[0], s[1] = 0.0, 1.0 / sigma
+    m = mu / sigma
+    sigma2 = sigma * sigma
+    for k in range(N_COEFS - 1):
+        c[k + 2] = (-2.0 * m * (k + 1) * c[k + 1] - c[k] / sigma2) / ((k + 2) * (k + 1))
+        s[k + 2] = (-2.0 * m * (k + 1) * s[k + 1] - s[k] / sigma2) / ((k + 2) * (k + 1))
     coefs = np.zeros((4, N_COEFS))
-    coefs[0, 2:] = -c[2:N_COEFS]  # 1 - c
-    coefs[1, 2:] = -s[2:N_COEFS]  # t - S
-    k = np.arange(1, N_COEFS)
-    coefs[2, 1:] = -(k + 1) * s[2 : N_COEFS + 1] * sigma  # 1 - S'  (S' = sum (k+1) s_{k+1} t^k)
-    coefs[3] = _degree_thresholds(rho, sigma, coefs[:3])
+    for k in range(2, N_COEFS):
+        coefs[0, k] = -c[k]  # 1 - c
+        coefs[1, k] = -s[k]  # t - S
+    for k in range(1, N_COEFS):
+        coefs[2, k] = -(k + 1) * s[k + 1] * sigma  # 1 - S'  (S' = sum (k+1) s_{k+1} t^k)
+    _degree_thresholds(rho, sigma, coefs)
     return params, coefs
 
 
@@ -147,38 +166,58 @@ _K_ROWS = np.arange(2, N_COEFS - 1)[:, None]
 _LOG_TAIL = (np.log(2.0 * (3 * _K_ROWS + 4)) + (_K_ROWS + 1) * np.log(_Q_GRID)[None, :]
              - np.cumsum(np.log(np.arange(1, N_COEFS + 1)))[_K_ROWS])  # log((k)!) at index k-1
 _TAIL_VALID = _K_ROWS + 1 >= 3.0 * _Q_GRID[None, :]
+# one degree more never hurts: the bound falls with K at every q <= 2 (by a factor (3K+7)/(3K+4) q/(K+2) <= 0.65,
+# far beyond rounding) and its validity only widens, so each row's first bad q is at or after the previous row's
+assert np.all(np.diff(_LOG_TAIL, axis=0) < 0.0) and np.all(_TAIL_VALID[1:] >= _TAIL_VALID[:-1])
+_ROOM = 2.0**-55
 
 
-@lru_cache(maxsize=4)
-def _grid_powers(rho: float, sigma: float) -> np.ndarray:
-    """(sigma t)^k on the q grid, t = q / rho: most of the cost of :func:`build_oscillator`, and the same
-    array for every mu <= 1 (rho = sigma = 1), so it is kept (read-only) for those."""
-    t = _Q_GRID / rho * sigma  # the scaled time of the coefficients
-    powers = t[:, None] ** np.arange(N_COEFS)[None, :]
-    powers.flags.writeable = False
-    return powers
-
-
-def _degree_thresholds(rho: float, sigma: float, coefs: np.ndarray) -> np.ndarray:
-    """For each degree K, the largest q = rho t up to which the series may stop at t^K.
+@njit(cache=True)
+def _degree_thresholds(rho, sigma, coefs):
+    """For each degree K, the largest q = rho t up to which the series may stop at t^K (into ``coefs[3]``).
 
     Rule: the tail after t^K, bounded by 2 (3K+4) q^(K+1) / (K+1)! (valid for
     K + 1 >= 3 q since |z_k| <= (3k+1) rho^k / k!), must stay below 2^-55 of the
     smallest of the three sums at every q' <= q of a fine logarithmic grid (the
     sums are positive and smooth on (0, SERIES_Q], and they are evaluated here
-    with all N_COEFS terms).  Every degree at once (one row of ``_LOG_TAIL`` each).
+    with all N_COEFS terms, by Horner at every grid point).  A row's first bad q
+    is at or after the previous row's (asserted on the tables above), so one pass
+    over the grid serves every degree: ~10 us in all (600 points x 3 Horner sums
+    of 48 terms, 600 logs).  The sums are a few ulps from the numpy builder's
+    (pow and a BLAS product; their logs differ by < 3e-14), which changes no
+    decision: every deciding comparison is > 1e-6 from a tie in the log
+    (tests/exact/test_oscillator_tables.py).
     """
     q = _Q_GRID
-    smallest = np.min(np.abs(_grid_powers(rho, sigma) @ coefs.T), axis=1)
-    with np.errstate(divide="ignore"):
-        log_room = np.log(2.0**-55 * smallest)
-    ok = _TAIL_VALID & (_LOG_TAIL <= log_room[None, :])
-    first_bad = np.where(ok.all(axis=1), q.size, np.argmin(ok, axis=1))  # q.size: no bad q
-    last_good = np.where(first_bad > 0, q[np.maximum(first_bad - 1, 0)], 0.0)
-    thresholds = np.zeros(N_COEFS)
-    thresholds[2 : N_COEFS - 1] = np.where(first_bad == q.size, q[-1], last_good)
-    thresholds[N_COEFS - 1] = SERIES_Q
-    return thresholds
+    nq = q.size
+    t = q / rho * sigma  # the scaled time of the coefficients
+    a0 = np.full(nq, coefs[0, N_COEFS - 1])
+    a1 = np.full(nq, coefs[1, N_COEFS - 1])
+    a2 = np.full(nq, coefs[2, N_COEFS - 1])
+    for k in range(N_COEFS - 2, -1, -1):
+        c0, c1, c2 = coefs[0, k], coefs[1, k], coefs[2, k]
+        for i in range(nq):
+            ti = t[i]
+            a0[i] = a0[i] * ti + c0
+            a1[i] = a1[i] * ti + c1
+            a2[i] = a2[i] * ti + c2
+    i = 0
+    log_room = _log_room(a0[0], a1[0], a2[0])
+    for r in range(_LOG_TAIL.shape[0]):  # degree K = r + 2
+        while i < nq and _TAIL_VALID[r, i] and _LOG_TAIL[r, i] <= log_room:
+            i += 1
+            if i < nq:
+                log_room = _log_room(a0[i], a1[i], a2[i])
+        # i: the row's first bad grid point (nq: none)
+        coefs[3, r + 2] = q[nq - 1] if i == nq else (q[i - 1] if i > 0 else 0.0)
+    coefs[3, N_COEFS - 1] = SERIES_Q
+
+
+@njit(cache=True)
+def _log_room(s0, s1, s2):
+    """log(2^-55 min |s_j|), -inf when a sum is 0."""
+    smallest = min(abs(s0), min(abs(s1), abs(s2)))
+    return math.log(_ROOM * smallest) if smallest > 0.0 else -math.inf
 
 
 @njit(cache=True)

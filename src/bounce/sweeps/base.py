@@ -42,6 +42,10 @@ ITEM = "item"
 #: result does not depend on how many workers ran it
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
               "NUMBA_NUM_THREADS": "1"}
+#: how worker processes start: fork on Linux (CPython then starts every worker before the pool's own thread, and a
+#: worker inherits this process's BLAS set-up, the one the first batch ran with: the pipeline's sweep jobs run with
+#: one BLAS thread, workflow/rules/sweeps.smk), spawn elsewhere (fork is unsafe on macOS)
+START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"
 
 
 @dataclass(frozen=True)
@@ -83,10 +87,14 @@ def combine(parts: list[dict], variables: dict) -> dict:
 def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, progress: bool | None = None) -> dict:
     """``sweep.compute`` over ``items`` on ``workers`` processes, in batches, with a progress bar.
 
-    The first batch runs in this process (compiling numba's kernels into its on-disk cache
-    once), the others in spawned processes with one BLAS thread each (:data:`WORKER_ENV`);
-    an item's numbers do not depend on which process ran it (tests/sweeps/test_sweeps.py).  ``progress``: a tqdm bar
-    on stderr (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
+    The first batch runs in this process (compiling numba's kernels, or loading them from the
+    on-disk cache, once); with one worker so do all the others (no pool), with more they run in
+    :data:`START_METHOD` worker processes: forked on Linux, so that a worker starts with this
+    process's modules and compiled kernels (a spawned worker spent ~1 s of CPU importing and
+    loading them, more than a shard of the contact Monte Carlo takes to compute), spawned
+    elsewhere, with one BLAS thread each (:data:`WORKER_ENV`).  An item's numbers do not depend on
+    which process ran it (tests/sweeps/test_sweeps.py).  ``progress``: a tqdm bar on stderr
+    (default: when stderr is a terminal; in a log file it is redrawn every 30 s).
     """
     from tqdm import tqdm
 
@@ -99,14 +107,17 @@ def run_items(sweep: Sweep, spec: dict, items: np.ndarray, workers: int = 1, pro
                disable=(not tty) if progress is None else not progress)
     results: list = [None] * len(bounds)
     saved = {k: os.environ.get(k) for k in WORKER_ENV}
-    os.environ.update(WORKER_ENV)  # inherited by the spawned workers at start-up
+    os.environ.update(WORKER_ENV)  # inherited by spawned workers at start-up (forked ones keep this process's BLAS)
     try:
         # the first batch here: it fills numba's on-disk cache once, before the workers start and load it
         results[0] = sweep.compute(spec, _slice(inputs, *bounds[0]))
         bar.update(bounds[0][1] - bounds[0][0])
-        if len(bounds) > 1:
-            with ProcessPoolExecutor(max_workers=max(workers, 1),
-                                     mp_context=multiprocessing.get_context("spawn")) as pool:
+        if len(bounds) > 1 and workers <= 1:
+            for i, (lo, hi) in enumerate(bounds[1:], start=1):
+                results[i] = sweep.compute(spec, _slice(inputs, lo, hi))
+                bar.update(hi - lo)
+        elif len(bounds) > 1:
+            with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(START_METHOD)) as pool:
                 futures = {pool.submit(sweep.compute, spec, _slice(inputs, lo, hi)): i
                            for i, (lo, hi) in enumerate(bounds) if i > 0}
                 for future in as_completed(futures):
