@@ -86,6 +86,7 @@ OVERRIDES = {
     "appendix": {"giorgio2_iterations": 20000, "giorgio_iterations": 100000},
     "onefifth-rest-coeff": {},
     "nonlinear-atlas": {},
+    "gas-collapse": {"scaling_r_min": 0.5},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -138,6 +139,8 @@ SWEEPS = {
     "hertz-restitution": {"shards": 1, "u": {"min": 1e-10, "max": 1.0, "n": 16}, "gamma": [1e-12, 1e-8, 1e-4]},
     "alpha-atlas": {"shards": 1, "a": [0.0, 1.0], "b": [0.5], "events": 30000,
                     "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}]},
+    "rigid-gas-collapse": {"shards": 1, "r": [0.5, 0.7, 0.8], "n": {"min": 4, "max": 48, "n": 9}, "samples": 4,
+                           "bootstrap": 50},
 }
 
 
@@ -166,7 +169,7 @@ def inputs_for(name: str) -> list:
                 "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
-                "nonlinear-atlas": [sweep("alpha-atlas")]}.get(name, [])
+                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse")]}.get(name, [])
     return declared + list(experiments(name))
 
 
