@@ -8,8 +8,6 @@ event loop then builds itself, 37 sticky phases and 7 detaches), with 1, 2 and 1
 
 from __future__ import annotations
 
-import copy
-import math
 from pathlib import Path
 
 import numpy as np
