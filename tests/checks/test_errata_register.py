@@ -1,4 +1,4 @@
-"""The errata register (bounce.checks.errata_register) and the erratum rows name each other: every erratum-kind claim
+"""The errata register (bounce.checks._errata_register) and the erratum rows name each other: every erratum-kind claim
 backs a register entry, every row an entry names exists and is an erratum; where the paper's LaTeX is at hand each
 entry's printed text sits on its stated line and its label is a label of the source."""
 
@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from bounce.checks import errata_register, registry
+from bounce.checks import _errata_register as errata_register, registry
 from bounce.checks.base import ERRATUM
-from bounce.checks.errata_register import REGISTER, SEVERITIES, Erratum, entries_by_row, row_id
+from bounce.checks._errata_register import REGISTER, SEVERITIES, Erratum, entries_by_row, row_id
 
 ROOT = Path(__file__).resolve().parents[2]
 #: the LaTeX source does not ship; as tests/pipeline/test_report.py, look beside the clone or at BOUNCE_PAPER_TEX

@@ -12,6 +12,9 @@ entry; every row an entry names exists and is of kind erratum; ids are unique; w
 (beside the clone, or ``BOUNCE_PAPER_TEX``), each entry's ``printed`` text occurs on its stated ``line`` and its
 ``label`` is a ``\\label`` of the source.
 
+The module is data shared by the claim groups' rows and the report, not a claim group: in a plug-in folder such a
+module is a private helper (``_name``, tests/test_layout.py).
+
 Locations are those of the LaTeX source ``stopping-time-bouncing-ball.tex``: its line numbers, and its section
 numbers as LaTeX assigns them (1 Introduction ... 4 Absence of Inelastic Collapse, 5 Asymptotic State,
 6 Non-Genericity, 7 Numerical Results, 8 Discussion and Conclusions, 9 Appendix).  The claim rows' ``paper_ref``
@@ -235,10 +238,10 @@ def row_id(claim_id: str) -> str:
     return claim_id.split("[", 1)[0]
 
 
-def entries_by_row() -> dict[str, list[Erratum]]:
+def entries_by_row(register=REGISTER) -> dict[str, list[Erratum]]:
     """``group/claim-id`` -> the register entries it backs."""
     out: dict[str, list[Erratum]] = {}
-    for e in REGISTER:
+    for e in register:
         for r in e.rows:
             out.setdefault(r, []).append(e)
     return out
