@@ -88,3 +88,21 @@ def test_block_says_what_a_run_did_not_produce(tmp_path):
                                   (float("nan"), "n/a")])
 def test_number_format(x, s):
     assert _sig(x) == s
+
+
+def test_block_counts_errata_once(tmp_path):
+    """The README's errata line counts distinct errata of the register, with their rows beside: the factor 2 of the
+    nonlinear dissipation rate checked on three scenes is one erratum; the severity table follows."""
+    from bounce.checks.base import ERRATUM, NOT_REPRODUCED, PAPER, REPRODUCED, Verdict, verdict_dataset
+    from bounce.checks._errata_register import REGISTER
+
+    (tmp_path / "checks").mkdir()
+    rows = [Verdict("c", "r", "c", "e", "m", "t", NOT_REPRODUCED, claim_id=f"nonlinear/printed-dissipation-rate[{s}]",
+                    kind=ERRATUM, subject="sec:Discussion") for s in ("a", "b", "c")]
+    rows.append(Verdict("c", "r", "c", "e", "m", "t", REPRODUCED, claim_id="nonlinear/equilibrium[a]", kind=PAPER,
+                        subject="sec:Discussion"))
+    verdict_dataset(rows, title="N").to_netcdf(tmp_path / "checks" / "nonlinear.nc")
+    text = block(tmp_path, "0123456789abcdef")
+    assert "| errata (the text as printed; distinct errata, backed by 3 rows) | 0 | 1 | 0 |" in text
+    assert "| statements of the paper | 1 | 0 | 0 |" in text
+    assert f"{len(REGISTER)} distinct errata" in text and "| severity | distinct errata |" in text

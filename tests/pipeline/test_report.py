@@ -1,5 +1,6 @@
 """The validation report: subjects in the config's declared order, every pipeline figure linked with the paper's
-figure and caption it reproduces (the captions are data of the figure registry)."""
+figure and caption it reproduces (the captions are data of the figure registry); errata counted once each, by the
+register (bounce.checks._errata_register), and an erratum row outside it stops the report."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from bounce.checks.base import PAPER, REPRODUCED, Verdict, verdict_dataset
+from bounce.checks.base import ERRATUM, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, Verdict, verdict_dataset
 from bounce.figures import FIGURES
 from bounce.pipeline.catalogue import pipeline_figures
 from bounce.pipeline.report import ReportError, ordered_subjects, write
@@ -64,3 +65,46 @@ def test_report_links_every_figure_in_order(tmp_path):
         assert f"]({link})" in text and f"href='{link}'" in html.read_text()
         assert (md.parent / link).exists()
     assert "fig. rigid-fall of the paper" in text and "beyond the paper" in text
+
+
+def _rows(*specs):
+    """Verdict rows (claim_id, kind, verdict) for the report's counting functions."""
+    return [Verdict("c", "ref", "comp", "e", "m", "t", verdict, claim_id=cid, kind=kind, subject="lem:a")
+            for cid, kind, verdict in specs]
+
+
+def test_errata_are_counted_once_by_the_register():
+    """Four rows back one erratum (the factor 2 on four scenes) and one row two typos: the errata line counts
+    distinct errata (with the rows beside), the other kinds count rows; severities add up to the register."""
+    from bounce.checks._errata_register import REGISTER, SEVERITIES
+    from bounce.pipeline.report import CheckReport, check_errata, kind_counts, kind_table_lines, severity_counts
+
+    factor2 = [(f"nonlinear/printed-dissipation-rate[{s}]", ERRATUM, NOT_REPRODUCED) for s in "abcd"]
+    rows = _rows(*factor2, ("errata/xi-lemma-typos", ERRATUM, NOT_REPRODUCED),
+                 ("restitution/our-r-centre-of-mass[rest]", ERRATUM, NOT_CHECKABLE),
+                 ("g/p1", PAPER, REPRODUCED), ("g/p2", PAPER, REPRODUCED))
+    reports = [CheckReport("g", "G", "fig-g.png", rows, {})]
+    check_errata(reports)
+    counts = {k: (a, b, c) for k, a, b, c in kind_counts(reports)}
+    assert counts[ERRATUM] == (0, 3, 1)  # factor 2, the two xi-lemma typos: 3 errata not reproduced; our-r: 1
+    assert counts[PAPER] == (2, 0, 0)
+    sev = {s: rest for s, *rest in severity_counts(reports)}
+    assert sev["all"] == [len(REGISTER), 4, 6] and sum(sev[s][0] for s in SEVERITIES) == len(REGISTER)
+    assert sev["typo"][1:] == [2, 1]  # two entries, one row
+    text = "\n".join(kind_table_lines(reports))
+    assert "| errata (the text as printed; distinct errata, backed by 6 rows) | 0 | 3 | 1 |" in text
+    assert f"{len(REGISTER)} distinct errata" in text
+
+
+def test_an_unregistered_erratum_row_stops_the_report(tmp_path):
+    from bounce.pipeline.report import CheckReport, check_errata
+
+    reports = [CheckReport("g", "G", "fig-g.png", _rows(("g/new-erratum[s]", ERRATUM, NOT_REPRODUCED)), {})]
+    with pytest.raises(ReportError, match="g/new-erratum.*errata register"):
+        check_errata(reports)
+    res = tmp_path / "results"
+    (res / "checks").mkdir(parents=True)
+    verdict_dataset(reports[0].verdicts, title="G").to_netcdf(res / "checks" / "g.nc")
+    with pytest.raises(ReportError, match="errata register"):
+        write([res / "checks" / "g.nc"], [res / "checks" / "fig-g.png"], res / "report" / "v.md", res / "report" / "v.html",
+              {"lem:a": "A"}, {})

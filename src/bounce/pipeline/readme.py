@@ -3,7 +3,8 @@
 ``snakemake --cores 2 readme`` (on demand, like the thumbnails) rewrites the block of README.md
 between the markers ``<!-- numbers:begin -->`` and ``<!-- numbers:end -->`` from
 
-* ``results/checks/*.nc``: the validation counts per kind of claim (:func:`bounce.pipeline.report.kind_counts`);
+* ``results/checks/*.nc``: the validation counts per kind of claim, errata counted once each (the register's
+  distinct entries, by severity, with the rows backing them: :func:`bounce.pipeline.report.kind_table_lines`);
 * ``results/methods/horizon.nc``: the float64 predictability horizon per regime;
 * ``results/methods/work-precision.nc`` and its timings ``results/timing/methods/work-precision-cpu.nc``:
   the best accuracy each method reached and its CPU time per flight against the exact solver's,
@@ -41,15 +42,15 @@ def _sig(x: float, digits: int = 2) -> str:
 
 
 def validation_lines(results: Path) -> list[str]:
-    from .report import KIND_TITLES, kind_counts, load
+    from .report import check_errata, kind_table_lines, load
 
     files = sorted((results / "checks").glob("*.nc"))
     if not files:
         return ["- Validation: no `results/checks/*.nc` in this run."]
     reports = load(files, [f.with_name(f"fig-{f.stem}.png") for f in files], results / "report")
-    lines = ["| kind of claim | reproduced | not reproduced | not checkable |", "|---|---|---|---|"]
-    lines += [f"| {KIND_TITLES[k]} | {a} | {b} | {c} |" for k, a, b, c in kind_counts(reports)]
-    return ["Validation report (`results/report/validation.md`, from `results/checks/*.nc`):", "", *lines]
+    check_errata(reports)
+    return ["Validation report (`results/report/validation.md`, from `results/checks/*.nc`; claims counted by rows, "
+            "errata once each):", "", *kind_table_lines(reports)]
 
 
 def horizon_lines(results: Path) -> list[str]:

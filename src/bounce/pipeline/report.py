@@ -1,10 +1,13 @@
 """The validation report: every claim group's verdict rows -> results/report/validation.{md,html}.
 
-ReScience-style: counts per kind of claim (paper statement, erratum, beyond the paper,
-self-test), a one-line verdict per declared subject (theorem, lemma, figure, equation: config
+ReScience-style: counts per kind of claim (paper statement, beyond the paper, self-test: rows;
+errata: distinct errors of the text, each register entry of :mod:`bounce.checks._errata_register`
+counted once however many rows back it, with the rows counted beside, and the errata by severity),
+a one-line verdict per declared subject (theorem, lemma, figure, equation: config
 ``report.subjects``; not reproduced if any claim behind it is, see :func:`overall`), a table of
 every claim (id, kind, claim, paper reference, what was computed, expected, measured, tolerance,
-verdict, figure), a section per claim group with its figure and numbers, the errata, and a link to
+verdict, figure), a section per claim group with its figure and numbers, the errata (each register
+entry once, with the rows that check it), and a link to
 every other figure the pipeline makes with the paper's figure (and caption) it reproduces, or
 "beyond the paper" (the captions are data of the figure registry, :mod:`bounce.figures`).
 
@@ -25,6 +28,7 @@ from pathlib import Path
 import xarray as xr
 
 from ..checks.base import ERRATUM, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
+from ..checks._errata_register import REGISTER, SEVERITIES, entries_by_row, row_id
 
 ORDER = {NOT_REPRODUCED: 0, NOT_CHECKABLE: 1, REPRODUCED: 2}
 BADGE = {REPRODUCED: "reproduced", NOT_REPRODUCED: "**not reproduced**", NOT_CHECKABLE: "*not checkable*"}
@@ -95,11 +99,80 @@ def check_subjects(reports, subjects: dict) -> None:
                               f"report.subjects does not declare (declared: {', '.join(subjects)})")
 
 
-def kind_counts(reports) -> list[tuple[str, int, int, int]]:
-    """(kind, reproduced, not reproduced, not checkable) for each kind of claim."""
+def check_errata(reports, register=REGISTER) -> None:
+    """Every erratum row must back a register entry (:mod:`bounce.checks._errata_register`): errata are counted there."""
+    named = entries_by_row(register)
+    for v in rows(reports):
+        if v.kind == ERRATUM and row_id(v.claim_id) not in named:
+            raise ReportError(f"erratum row {v.claim_id or v.claim!r} backs no entry of the errata register "
+                              "(bounce.checks._errata_register): add the erratum there, with this row")
+
+
+def erratum_entries(reports, register=REGISTER) -> list[tuple]:
+    """(entry, its rows in this run, their overall verdict or "" without rows) for every register entry, in order."""
+    out = []
+    for e in register:
+        mine = [v for v in rows(reports) if v.kind == ERRATUM and row_id(v.claim_id) in e.rows]
+        out.append((e, mine, overall(mine).split(" (")[0] if mine else ""))
+    return out
+
+
+def kind_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int]]:
+    """(kind, reproduced, not reproduced, not checkable) for each kind of claim: rows for every kind but ``erratum``,
+    whose counts are of distinct errata (register entries checked by rows in this run, each counted once by the
+    overall verdict of its rows; the rows are counted by :func:`errata_rows`)."""
     all_rows = rows(reports)
-    return [(k, *(sum(v.kind == k and v.verdict == w for v in all_rows) for w in (REPRODUCED, NOT_REPRODUCED,
-                                                                                 NOT_CHECKABLE))) for k in KINDS]
+    entries = [verdict for _, mine, verdict in erratum_entries(reports, register) if mine]
+    out = []
+    for k in KINDS:
+        if k == ERRATUM:
+            out.append((k, *(entries.count(w) for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE))))
+        else:
+            out.append((k, *(sum(v.kind == k and v.verdict == w for v in all_rows)
+                             for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE))))
+    return out
+
+
+def errata_rows(reports) -> int:
+    """The erratum rows of this run (per scene), which back the distinct errata of :func:`kind_counts`."""
+    return sum(v.kind == ERRATUM for v in rows(reports))
+
+
+def severity_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int]]:
+    """(severity, distinct errata, of them checked by rows in this run, those rows) per severity, then ("all", ...):
+    a row backing two entries of one severity counts once there, and once in "all"."""
+    entries = erratum_entries(reports, register)
+    out = []
+    for sev in (*SEVERITIES, "all"):
+        mine = [(e, rs) for e, rs, _ in entries if sev in ("all", e.severity)]
+        backing = {v.claim_id for _, rs in mine for v in rs}
+        out.append((sev, len(mine), sum(bool(rs) for _, rs in mine), len(backing)))
+    return out
+
+
+def _kind_title(kind: str, n_rows: int) -> str:
+    """The kind's title in the counts table; the errata's says that it counts distinct errata, and their rows."""
+    if kind == ERRATUM:
+        return KIND_TITLES[kind][:-1] + f"; distinct errata, backed by {n_rows} rows)"
+    return KIND_TITLES[kind]
+
+
+def kind_table_lines(reports, register=REGISTER) -> list[str]:
+    """The markdown table of counts per kind (errata: distinct) and the errata by severity, for the report and the
+    README (:mod:`bounce.pipeline.readme`)."""
+    n_rows = errata_rows(reports)
+    lines = ["| kind of claim | reproduced | not reproduced | not checkable |", "|---|---|---|---|"]
+    for k, a, b, c in kind_counts(reports, register):
+        title = _kind_title(k, n_rows)
+        lines.append(f"| {title} | {a} | {b} | {c} |")
+    sev = severity_counts(reports, register)
+    total = sev[-1]
+    lines += ["", f"Errata register (`src/bounce/checks/_errata_register.py`): {total[1]} distinct errata of the text as "
+              f"printed, each counted once; {total[2]} of them checked by {total[3]} claim rows of this run, the other "
+              f"{total[1] - total[2]} recorded from the text.", "",
+              "| severity | distinct errata | checked by claim rows | rows |", "|---|---|---|---|"]
+    lines += [f"| {s} | {n} | {checked} | {nr} |" for s, n, checked, nr in sev]
+    return lines
 
 
 def summaries(reports, subjects: dict) -> list[tuple[str, str, int]]:
@@ -147,8 +220,7 @@ def markdown(reports, subjects, meta: dict, figures=()) -> str:
     counts = {k: sum(v.verdict == k for v in all_rows) for k in ORDER}
     lines += [f"**{counts[REPRODUCED]} reproduced, {counts[NOT_REPRODUCED]} not reproduced, "
               f"{counts[NOT_CHECKABLE]} not checkable** (of {len(all_rows)} claims).", ""]
-    lines += ["| kind of claim | reproduced | not reproduced | not checkable |", "|---|---|---|---|"]
-    lines += [f"| {KIND_TITLES[k]} | {a} | {b} | {c} |" for k, a, b, c in kind_counts(reports)]
+    lines += kind_table_lines(reports)
     lines += ["", "## Overall verdict per figure and per theorem", "",
               "Errata are left out (listed below); every other claim backs the subject it declares.", "",
               "| subject | verdict | claims |", "|---|---|---|"]
@@ -169,14 +241,15 @@ def markdown(reports, subjects, meta: dict, figures=()) -> str:
         if r.numbers:
             lines += ["", "| quantity | value |", "|---|---|"]
             lines += [f"| {_md_cell(k)} | {val:.6g} |" for k, val in r.numbers.items()]
-    errata = [v for v in rows(reports) if v.kind == ERRATUM]
-    lines += ["", "## Errata", "", "Statements of the paper, as printed, checked against the numerics or the algebra "
-              "(not reproduced: the printed form is contradicted; the row gives the corrected form):", ""]
-    if errata:
-        lines += [f"* {_badge(v.verdict)} **{v.paper_ref}**: {v.claim}. Evidence: {v.measured} "
-                  f"(expected as printed: {v.expected})." for v in errata]
-    else:
-        lines.append("(no erratum claims in this run)")
+    lines += ["", "## Errata", "", "Every distinct erratum of the paper once (the register, "
+              "`src/bounce/checks/_errata_register.py`; locations are lines of the LaTeX source), by severity, with the claim "
+              "rows that check the printed form against the numerics or the algebra (not reproduced: the printed form "
+              "is contradicted; each row gives the evidence):", ""]
+    for e, mine, verdict in sorted(erratum_entries(reports), key=lambda t: SEVERITIES.index(t[0].severity)):
+        checked = (f" Checked by {', '.join(f'`{v.claim_id}` ({v.verdict})' for v in mine)}: {_badge(verdict)}."
+                   if mine else " Recorded from the text (no claim row).")
+        lines.append(f"* **{e.id}** ({e.severity}; {e.section}{', ' + e.label if e.label else ''}, l. {e.line}): "
+                     f"printed `{e.printed}`, correct `{e.correct}`. {e.evidence}.{checked}")
     lines += ["", "## Figures", "", "Every figure of the pipeline besides the claim groups' own (above), with the "
               "figure of the paper it reproduces and that figure's caption as printed, or what it shows when it is "
               "beyond the paper.", "", "| figure | reproduces | caption |", "|---|---|---|"]
@@ -197,9 +270,24 @@ def to_html(reports, subjects, meta: dict, figures=()) -> str:
              f"<p>bounce {e(meta.get('version', '?'))}, git commit <code>{e(meta.get('commit', '?'))}</code></p>",
              "<h2>Claims per kind</h2><table><tr><th>kind of claim</th><th>reproduced</th><th>not reproduced</th>"
              "<th>not checkable</th></tr>"]
-    parts += [f"<tr><td>{e(KIND_TITLES[k])}</td><td>{a}</td><td>{b}</td><td>{c}</td></tr>"
-              for k, a, b, c in kind_counts(reports)]
-    parts.append("</table><h2>Overall verdict per figure and per theorem</h2><table><tr><th>subject</th>"
+    n_rows = errata_rows(reports)
+    parts += [f"<tr><td>{e(_kind_title(k, n_rows))}</td><td>{a}</td>"
+              f"<td>{b}</td><td>{c}</td></tr>" for k, a, b, c in kind_counts(reports)]
+    parts.append("</table><h2 id='errata-register'>Errata by severity</h2><p>Distinct errata of the register "
+                 "(src/bounce/checks/_errata_register.py), each counted once, with the claim rows of this run that check "
+                 "them.</p><table><tr><th>severity</th><th>distinct errata</th><th>checked by claim rows</th>"
+                 "<th>rows</th></tr>")
+    parts += [f"<tr><td>{e(sev)}</td><td>{n}</td><td>{checked}</td><td>{nr}</td></tr>"
+              for sev, n, checked, nr in severity_counts(reports)]
+    parts.append("</table><ul>")
+    for entry, mine, verdict in sorted(erratum_entries(reports), key=lambda t: SEVERITIES.index(t[0].severity)):
+        checked = ("checked by " + ", ".join(f"{v.claim_id} ({v.verdict})" for v in mine) + f": {verdict}"
+                   if mine else "recorded from the text")
+        parts.append(f"<li><b>{e(entry.id)}</b> ({e(entry.severity)}; {e(entry.section)}"
+                     f"{e(', ' + entry.label) if entry.label else ''}, l. {entry.line}): printed "
+                     f"<code>{e(entry.printed)}</code>, correct <code>{e(entry.correct)}</code>. {e(entry.evidence)}; "
+                     f"{e(checked)}</li>")
+    parts.append("</ul><h2>Overall verdict per figure and per theorem</h2><table><tr><th>subject</th>"
                  "<th>verdict</th><th>claims</th></tr>")
     for s, v, n in summaries(reports, subjects):
         parts.append(f"<tr class='{v.split(' (')[0].replace(' ', '-')}'><td>{e(s)}</td><td>{e(v)}</td><td>{n}</td></tr>")
@@ -233,6 +321,7 @@ def write(check_files, figure_files, out_md, out_html, subjects: dict, meta: dic
     report_dir = Path(out_md).parent
     reports = load(check_files, figure_files, report_dir)
     check_subjects(reports, subjects)
+    check_errata(reports)
     figs = figure_entries(figures, report_dir)
     for path, text in ((out_md, markdown(reports, subjects, meta, figs)),
                        (out_html, to_html(reports, subjects, meta, figs))):
