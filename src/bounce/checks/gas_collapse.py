@@ -170,8 +170,12 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.plot(np.log(20.0), MY_NC_095 * 0.05, "s", mfc="none", color="C3", label="McNamara-Young, r = 0.95 (walls)")
     for xi, yi, ri in zip(x, y, r):
         ax.annotate(f"{ri:g}", (xi, yi), textcoords="offset points", xytext=(3, 3), fontsize=5)
-    ax.set(xscale="log", yscale="log", xlabel=r"$\ln(1/(1-r))$", ylabel=r"$N_c\,(1-r)$")
-    ax.legend(fontsize=6)
+    ax.set(xscale="log", yscale="log", xlabel=r"$\ln(1/(1-r))$", ylabel=r"$N_c\,(1-r)$ (grains)")
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
+        axis.set_minor_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.tick_params(which="minor", labelsize=6)
+    ax.legend(fontsize=6, loc="lower right")
     fig.suptitle("rigid points on a ring: the collapse number against McNamara and Young's scale", fontsize=8)
     save(fig, outputs)
 
