@@ -104,6 +104,15 @@ def test_linear_law_sticky_start_at_natural_length(gamma, mu):
     assert ref.kind_names == tr.kind_names == ("sticky_start",)
 
 
+def test_sticky_phase_crosses_the_rest_length_with_a_small_damping_exponent():
+    """a = 2.5, b = 1/8 from a spring compressed to zero length (x = y = 0): the sticky phase passes xi = 0, where its
+    steps move eta by less than half an ulp; xi formed without the compensation term froze at 5.6e-16, outside the
+    crossing window (6.6e-16 wide for b = 1/8), and the phase stalled (RuntimeError after 4e5 steps; found by the
+    fuzz of stop 28).  Now it detaches and the ball flies."""
+    tr = simulate(Parameters(0.01, 0.01, PowerSpring(1.0, 2.5, 0.125)), State(0.0, 0.0, 0.0, 0.0), max_events=4)
+    assert tr.kind_names == ("sticky_start", "detach", "impact", "impact"), (tr.kind_names, tr.stop_reason)
+
+
 def test_never_detach_criterion_is_sharp_without_damping():
     """mu = 0, linear law: F's maximum over the sticky orbit is eta_amp - 2 gamma with
     eta_amp = sqrt(eta^2 + 2 xi'^2) (eta'' = -eta/2); just below the level the phase is proved

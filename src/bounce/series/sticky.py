@@ -222,7 +222,9 @@ def sticky_phase(v, eta, t_limit, law, X, P, Q, dense):
         t = t_hi + t_lo
         if not dense and opening == 0 and never_detaches(v + vl, eta + el, law):
             return NEVER, t, v + vl, eta + el
-        xi0 = xi_eq + eta
+        # with the compensation term: near xi = 0 the steps move eta by less than half its ulp, so xi_eq + eta alone
+        # froze at ~eps |xi_eq| outside a crossing window narrower than that (b = 1/8: 6.6e-16) and the phase stalled
+        xi0 = (xi_eq + eta) + el
         w0 = abs(xi0)
         p0, q0 = powers_at(w0, law)
         if singular:
