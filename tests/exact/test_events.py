@@ -27,6 +27,7 @@ from bounce import Deviations, Parameters, State, simulate
 from bounce.kinds import GRAZING, IMPACT, STICKY_START, STOP_FAILED, STOP_NAMES
 from bounce.exact.events import _is_sticky_onset, _is_tangential, compensated_add, energy_excess, floor_force, run_events
 from bounce.exact.oscillator import make_oscillator
+from bounce.exact.events import rounding_level as contact_rounding_level
 from contacts import constructed_contact, reference_flight, rounding_level
 
 EPS = 2.0**-52
@@ -201,3 +202,21 @@ def test_every_stop_reason_is_reachable():
     out = [np.empty(3) for _ in range(6)] + [np.empty(3, dtype=np.int8)]
     n, stop, _ = run_events(math.nan, 0.0, 0.0, 0.0, 0.01, params, coefs, sparams, scoefs, 3, math.inf, 0.0, *out)
     assert STOP_NAMES[stop] == "root_finder_failed" and stop == STOP_FAILED and n == 0
+
+
+@pytest.mark.parametrize("speed", [1e-90, 1.3066306367476234e-114, 1e-140])
+@pytest.mark.parametrize("mu", [0.0, 0.3])
+def test_a_launch_whose_speed_cubed_underflows_still_bounces(speed, mu):
+    """From rest at equilibrium (eta = xi' = 0) with x' = u: x'' = -2 gamma, x''' = 0 to rounding, so every
+    flight lasts u / gamma and every contact is an impact returning x' = u (E - E_m = u^2/2 throughout).
+    |u|^3 underflowed to 0 in _is_tangential and 0 <= 0 made the first contact a sticky start that kept xi'
+    and doubled E - E_m (found by the power-law fuzz; the linear law had it too).  Below |u| ~ 1e-150 the contact is
+    tangential by the absolute floor 1e-300 of rounding_level, on purpose."""
+    gamma = 0.1
+    traj = simulate(Parameters(gamma, mu), Deviations(0.0, speed, 0.0, 0.0), max_events=6)
+    assert np.all(traj.kind == IMPACT)
+    assert np.allclose(traj.tau, speed / gamma, rtol=1e-14, atol=0.0)
+    assert np.allclose(traj.xdot, speed, rtol=1e-14, atol=0.0)
+    assert np.allclose(traj.energy_excess, 0.5 * speed * speed, rtol=1e-14, atol=0.0)
+    xn = contact_rounding_level(speed * speed / gamma)  # the scale of x over the flight
+    assert not _is_tangential(-speed, -2.0 * gamma, 0.0, xn)

@@ -39,6 +39,7 @@ from bounce.exact.flight import (
     gap,
     liftoff_time,
     oscillator_at,
+    safe_step,
     xi_derivatives,
 )
 from bounce.exact.oscillator import P_RHO, SERIES_Q, make_oscillator
@@ -381,3 +382,16 @@ def test_near_degenerate_sticky_onset_is_sticky():
                                     "0x1.c230147d876e1p-11")]
     tr = simulate(Parameters(g, m), Deviations(*s), max_events=1)
     assert tr.kind[0] == STICKY_START
+
+
+@pytest.mark.parametrize("x", [5e-324, 1e-310, 1e-290])
+@pytest.mark.parametrize("v", [0.0, 1e-170, -1e-160])
+def test_safe_step_keeps_its_digits_for_subnormal_heights(x, v):
+    """safe_step = the smallest positive root of x + v s - B s^2/2; 2 B x underflowed for x = 5e-324, so the step was
+    0 and the power-law root finder never advanced from a subnormal height (found by the fuzz)."""
+    B = 0.07641346319088663
+    mp.dps = 60
+    X, V, BB = mpf(x), mpf(v), mpf(B)
+    exact = (V + (V * V + 2 * BB * X).sqrt()) / BB
+    assert safe_step(x, v, B) > 0.0
+    assert abs(safe_step(x, v, B) - exact) <= 4 * 2.0**-52 * exact

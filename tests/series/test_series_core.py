@@ -337,3 +337,25 @@ def test_product_error_is_exact(v, h):
     p = v * h
     assume(abs(p) >= 1e-280 or v == 0.0 or h == 0.0)  # Dekker's split is exact while no partial product underflows
     assert Fraction(v) * Fraction(h) - Fraction(p) == Fraction(_product_error(v, h, p))
+
+
+def test_a_subnormal_height_reaches_the_floor():
+    """x = 5e-324, x' = 0 with the spring compressed past its equilibrium: the lower mass is pressed down and reaches
+    the floor after ~1e-161 (a sticky start, its speed below the rounding of x), then lifts off and bounces.  The
+    safe step sqrt(2 x / B) underflowed to 0 and the root finder raised RuntimeError (found by the fuzz)."""
+    params = Parameters(0.01, 0.0, PowerSpring(1.0, 0.43357199198762497, 0.43818618936195797))
+    traj = simulate(params, State(5e-324, 0.0, 0.6983627196828845, 0.0), max_events=36, t_max=462.25)
+    assert traj.stop_reason == "max_events" and len(traj.t) == 36
+    assert 0.0 < traj.tau[0] < 1e-160
+    assert np.all(np.diff(traj.energy_excess) <= 1e-13 * traj.energy_excess[:-1])
+
+
+@pytest.mark.parametrize("rho", [0.5, 1.0, 3.0])
+def test_a_launch_whose_speed_cubed_underflows_bounces_for_the_power_law(rho):
+    """a = b = 0, mu = 0, from equilibrium with x' = 1.3e-114: x'' = -2 gamma, every flight u / gamma, every contact
+    an impact (the classifier's |v|^3 underflowed: a sticky start doubled E - E_m; found by the fuzz)."""
+    gamma, speed = 0.1, 1.3066306367476234e-114
+    traj = simulate(Parameters(gamma, 0.0, PowerSpring(rho, 0.0, 0.0)), Deviations(0.0, speed, 0.0, 0.0), max_events=6)
+    assert np.all(traj.kind == 0)  # impacts
+    assert np.allclose(traj.tau, speed / gamma, rtol=1e-14, atol=0.0)
+    assert np.allclose(traj.energy_excess, 0.5 * speed * speed, rtol=1e-14, atol=0.0)

@@ -277,7 +277,14 @@ def _is_tangential(v, acc, jerk, xn):
     if v >= 0.0:
         return True
     v2 = v * v
-    return v2 <= TANGENT_ACC * abs(acc) * xn or v2 * abs(v) <= TANGENT_JERK * abs(jerk) * xn * xn
+    if v2 <= TANGENT_ACC * abs(acc) * xn:
+        return True
+    cube = v2 * abs(v)
+    if cube < 1e-290:
+        # |v|^3 underflows (|v| < 1e-97): 0 <= 0 made an impact at x' = -1.3e-114 with a zero jerk a sticky
+        # start that kept xi' and doubled E - E_m (found by the power-law fuzz); compared scaled by xn^2
+        return (v2 / xn) * (abs(v) / xn) <= TANGENT_JERK * abs(jerk)
+    return cube <= TANGENT_JERK * abs(jerk) * xn * xn
 
 
 @njit(cache=True)

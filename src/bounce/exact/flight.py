@@ -116,7 +116,12 @@ def gap(t, x0, u, a, eta, g, params, coefs):
 def safe_step(x, v, B):
     """Smallest positive root of x + v s - B s^2 / 2 (inf if there is none)."""
     if B > 0.0:
-        disc = math.sqrt(v * v + 2.0 * B * x)
+        if x < 1e-280:
+            # 2 B x underflows (x = 5e-324 gave disc = 0, a zero step, and a root finder that never
+            # advanced: found by the power-law fuzz); sqrt(2 B) sqrt(x) keeps its digits
+            disc = math.hypot(v, math.sqrt(2.0 * B) * math.sqrt(x))
+        else:
+            disc = math.sqrt(v * v + 2.0 * B * x)
         if v < 0.0:
             return 2.0 * x / (disc - v)
         return (v + disc) / B
