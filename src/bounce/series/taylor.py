@@ -379,9 +379,12 @@ def cauchy_radius(w0, v0, p0, q0, c0, r, m, law):
     """
     av = abs(v0)
     if law[L_ANALYTIC_A] == 1.0 and law[L_ANALYTIC_B] == 1.0:
-        # any Rz is valid for an entire law; the state's own scale, or at rest at xi = 0 (w0 = v0 = 0,
-        # a sticky start from the spring's natural length) the equilibrium's, so that r_c stays finite
-        Rz = max(w0, av, -law[L_XI_EQ])
+        # any Rz is valid for an entire law: the state's own scale (a larger one shrinks the steps: the tail
+        # bound grows with Rz, its tolerance with the state), or at rest at xi = 0 (w0 = v0 = 0: a sticky start
+        # from the spring's natural length) the equilibrium's, where 1e-300 made r_c^4 underflow to 0
+        Rz = max(w0, av) + 1e-300
+        if Rz < 1e-290:
+            Rz = -law[L_XI_EQ]
         M0 = c0 + r * (w0 + Rz) + 2.0 * m * av
         M1 = 2.0 * m
     else:
