@@ -141,6 +141,7 @@ SWEEPS = {
                     "constants": [{"rho": 1.0, "gamma": 0.01, "mu": 0.3}]},
     "rigid-gas-collapse": {"shards": 1, "r": [0.5, 0.7, 0.8], "n": {"min": 4, "max": 48, "n": 9}, "samples": 4,
                            "bootstrap": 50},
+    "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
 }
 
 
@@ -169,7 +170,7 @@ def inputs_for(name: str) -> list:
                 "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
-                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse")]}.get(name, [])
+                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse")]}.get(name, [])
     return declared + list(experiments(name))
 
 

@@ -20,7 +20,23 @@ def sweep_like(n_c, rel_err=0.05, p=None):
     p = np.tile([0.0, 0.5, 1.0], (R.size, 1)) if p is None else p
     ds = xr.Dataset({"n_c": ("r", n_c), "n_c_err": ("r", rel_err * n_c), "p_collapse": (("r", "n"), p)},
                     coords={"r": R, "n": [4, 64, 1024]})
-    ds.attrs["samples"] = 16
+    ds.attrs.update(samples=16, sweep="rigid-gas-collapse")
+    return ds
+
+
+def dimers_like(stop=0, dimer_t=10.0, dimer_collisions=2000.0, outcome=0):
+    """A gathered dimer-gas-collapse dataset of two states whose rigid twins collapsed at t = 5 after 500
+    collisions per grain."""
+    shape = (1, 1, 2)
+    full = lambda v: np.full(shape, v)  # noqa: E731
+    ds = xr.Dataset({"rigid_outcome": (("r", "n", "sample"), full(outcome).astype(np.int8)),
+                     "rigid_t_end": (("r", "n", "sample"), full(5.0)), "rigid_collisions": (("r", "n", "sample"), full(500.0)),
+                     "dimer_stop": (("r", "n", "sample"), np.array([[[0, stop]]], dtype=np.int8)),
+                     "dimer_t_end": (("r", "n", "sample"), np.array([[[10.0, dimer_t]]])),
+                     "dimer_collisions": (("r", "n", "sample"), np.array([[[2000.0, dimer_collisions]]])),
+                     "dimer_rate_early": (("r", "n", "sample"), full(1.0)), "dimer_rate_late": (("r", "n", "sample"), full(50.0))},
+                    coords={"r": [0.8], "n": [300], "sample": [0, 1]})
+    ds.attrs.update(sweep="dimer-gas-collapse", collisions=2000)
     return ds
 
 
@@ -61,3 +77,16 @@ def test_three_points_switch_at_r_c():
     m = SimpleNamespace()
     assert G.three_point_threshold(m, SPEC).verdict == REPRODUCED
     assert G.three_point_threshold(m, dict(SPEC, threshold_rtol=1e-6)).verdict == NOT_REPRODUCED
+
+
+@pytest.mark.parametrize("changes, verdict", [
+    ({}, REPRODUCED),
+    ({"stop": 3}, NOT_REPRODUCED),  # an engine stop (overlap) in one dimer run
+    ({"dimer_t": 4.0}, NOT_REPRODUCED),  # its time did not pass the twin's collapse
+    ({"dimer_collisions": 400.0}, NOT_REPRODUCED),  # fewer collisions per grain than the twin made
+    ({"outcome": 1}, NOT_CHECKABLE),  # no rigid twin collapsed: nothing to compare with
+])
+def test_dimer_claim_flips_when_the_dimers_stop_or_fall_short(changes, verdict):
+    n_c = 5.0 / (1.0 - R)
+    m = G.measure(SPEC, [sweep_like(n_c), dimers_like(**changes)])
+    assert G.dimer_gas_no_collapse(m, SPEC).verdict == verdict

@@ -8,7 +8,12 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from bounce.sweeps.rigid_gas_collapse import CAP, COLLAPSE, COOLED, SWEEP, run_one, threshold
+from bounce.analysis.gas_rings import CAP, COLLAPSE, COOLED, ring_points, run_rigid_ring
+from bounce.sweeps.rigid_gas_collapse import SWEEP, threshold
+
+
+def run_one(r, n, rng, cooling, check_every, max_collisions):
+    return run_rigid_ring(r, *ring_points(n, rng), cooling, check_every, max_collisions)
 
 SPEC = {"r": [0.5, 0.8], "n": {"min": 4, "max": 48, "n": 9}, "samples": 4, "seed": 24, "cooling": 1e-16,
         "check_every": 50, "max_collisions": 20000, "bootstrap": 50}

@@ -4,8 +4,9 @@ The paper motivates its deformable ball by the inelastic collapse of rigid model
 rigid points with constant restitution r that collapse is McNamara and Young's (Phys. Fluids A 4, 496 (1992)):
 three points collapse only for r < r_c = 7 - 4 sqrt(3), and n points need n > N_c(r), "the minimum number scales as
 -ln(1-r)/(1-r)" when r is close to 1, "roughly 88 if r = 0.95" in their cooling runs between inelastic boundaries.
-Inputs: the sweep ``rigid-gas-collapse`` (:mod:`bounce.sweeps.rigid_gas_collapse`: random states on a ring, our
-setting), and probes of three points (:func:`three_points`).
+Inputs: the sweeps ``rigid-gas-collapse`` (:mod:`bounce.sweeps.rigid_gas_collapse`: random states on a ring, our
+setting) and ``dimer-gas-collapse`` (:mod:`bounce.sweeps.dimer_gas_collapse`), and probes of three points
+(:func:`three_points`).
 
 1. ``three-point-threshold``: bisection on r of a three-point sequence from a fixed state (the engine's
    collapse stop or not) puts the switch at 7 - 4 sqrt(3) within ``threshold_rtol`` (2%: float64 resolves the switch
@@ -18,6 +19,9 @@ setting), and probes of three points (:func:`three_points`).
    1/(1-r) law beta = 0.  Reproduced if |beta - 1| <= ``sigmas`` x its standard error.
 4. ``collapse-number-r095``: N_c(0.95) on our ring against their ~88 between inelastic boundaries: a different
    setting (our engine has rings and columns, no walls), so the row gives the number and is not checkable.
+5. ``dimer-gas-no-collapse``: from the states whose rigid twin collapsed (sweep ``dimer-gas-collapse``, ~10 N_c
+   grains), the gas of dimers with the same restitution exp(-mu T_xi) = r runs its whole budget of collisions without
+   an engine stop, more collisions per grain than its twin made, to a time past the twin's collapse.
 
 What N_c means here: the number of grains at which half of the random states collapse (before cooling by the sweep's
 factor), a typical number; McNamara and Young's scaling is for the minimum number that makes a collapse possible,
@@ -36,7 +40,7 @@ import xarray as xr
 
 from ..gas.model import RigidParameters, RigidState
 from ..gas.simulate import simulate_rigid
-from .base import BEYOND, NOT_CHECKABLE, Check, Verdict, claim, judge, variable
+from .base import BEYOND, NOT_CHECKABLE, Check, Verdict, claim, judge, split_inputs, variable
 
 NAME = "gas-collapse"
 SUBJECT = "sec:introduction"
@@ -80,7 +84,8 @@ def fit_scaling(r: np.ndarray, n_c: np.ndarray, err: np.ndarray) -> tuple[float,
 
 
 def measure(spec: dict, inputs: list) -> SimpleNamespace:
-    (ds,) = inputs
+    _, named = split_inputs(inputs)
+    ds, dimers = named["rigid-gas-collapse"], named.get("dimer-gas-collapse")
     r, n_c, err = ds["r"].values, ds["n_c"].values, ds["n_c_err"].values
     upper = r >= float(spec["scaling_r_min"])
     beta, beta_err, c, points = fit_scaling(r[upper], n_c[upper], err[upper])
@@ -92,7 +97,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     ctx = (f"sweep rigid-gas-collapse: points on a ring of circumference n, {int(ds.attrs['samples'])} random states "
            f"per (r, n), n in [{int(ds['n'].values[0])}, {int(ds['n'].values[-1])}]")
     return SimpleNamespace(ds=ds, r=r, n_c=n_c, err=err, beta=beta, beta_err=beta_err, c=c, points=points,
-                           data=data, ctx=ctx)
+                           data=data, ctx=ctx, dimers=dimers)
 
 
 CLAIMS: list = []
@@ -150,6 +155,37 @@ def collapse_number_r095(m, spec) -> Verdict:
         "McNamara and Young 1992 (beyond the paper)", m.ctx, f"N_c(0.95) ~ {MY_NC_095:g}",
         measured + "; their setting (a gas between inelastic boundaries) is not ours (a ring)",
         "none: a different setting", NOT_CHECKABLE)
+
+
+@claim(CLAIMS, "dimer-gas-no-collapse", BEYOND, SUBJECT)
+def dimer_gas_no_collapse(m, spec) -> Verdict:
+    text = ("a gas of dimers (the paper's balls) does not collapse where rigid grains with the same restitution do: "
+            "its time goes on past the rigid collapse")
+    ref = "introduction and Discussion (internal vibrations remove the collapse); Paparella and Passoni"
+    d = m.dimers
+    if d is None:
+        return Verdict(text, ref, "no sweep dimer-gas-collapse among the inputs", "", "", "none", NOT_CHECKABLE)
+    collapsed = d["rigid_outcome"].values == 0
+    computed = (f"sweep dimer-gas-collapse: {collapsed.size} random ring states (r in {list(map(float, d['r'].values))}, "
+                f"n in {list(map(int, d['n'].values))}), each as rigid points and as dimers with exp(-mu T_xi) = r, "
+                f"{int(d.attrs['collisions'])} collisions per grain of dimers")
+    if not collapsed.any():
+        return Verdict(text, ref, computed, "some rigid twins collapse", "no rigid twin collapsed", "none",
+                       NOT_CHECKABLE)
+    stop = d["dimer_stop"].values[collapsed]
+    past = d["dimer_t_end"].values[collapsed] / d["rigid_t_end"].values[collapsed]
+    more = d["dimer_collisions"].values[collapsed] / d["rigid_collisions"].values[collapsed]
+    early, late = d["dimer_rate_early"].values[collapsed], d["dimer_rate_late"].values[collapsed]
+    ok = (stop == 0) & (past > 1.0) & (more > 1.0)
+    measured = (f"{int(collapsed.sum())} of {collapsed.size} rigid twins collapsed; their dimer gases: {int((stop == 0).sum())} "
+                f"ran their whole budget without an engine stop, last time / twin's collapse time in "
+                f"[{past.min():.3g}, {past.max():.3g}], collisions per grain / twin's in [{more.min():.3g}, {more.max():.3g}]; "
+                f"collision rate, last tenth / first tenth, in [{np.min(late / early):.3g}, {np.max(late / early):.3g}] "
+                f"(clusters form; the rate stays finite)")
+    return Verdict(text, ref, computed,
+                   "every dimer gas whose rigid twin collapsed runs its whole budget, more collisions per grain than the "
+                   "twin, to a time past the twin's collapse", measured,
+                   "exact (the engine's stop and the recorded times)", judge(bool(ok.all())))
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:

@@ -33,13 +33,10 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..gas.model import RigidParameters, RigidState
-from ..gas.simulate import GasRun
+from ..analysis.gas_rings import CAP, COLLAPSE, ring_points, run_rigid_ring
 from .base import ITEM, Sweep, axis
 
 NAME = "rigid-gas-collapse"
-COLLAPSE, COOLED, CAP = 0, 1, 2
-OUTCOMES = ("collapse", "cooled", "cap")
 
 
 def _grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
@@ -60,36 +57,15 @@ def prepare(spec: dict, items: np.ndarray) -> dict:
     return {"r": r[i], "n": ns[j], "item": np.asarray(items, dtype=np.int64)}
 
 
-def run_one(r: float, n: int, rng: np.random.Generator, cooling: float, check_every: int,
-            max_collisions: int) -> tuple[int, float, float]:
-    """(outcome, collisions per grain, time) of one ring of n points from a state drawn by ``rng``."""
-    x = np.sort(rng.uniform(0.0, float(n), n))
-    v = rng.standard_normal(n)
-    v -= v.mean()
-    run = GasRun(RigidParameters(n, "ring", 0.0, r, ell=float(n), size=0.0), RigidState(x, v), math.inf, 0)
-    start = float(np.sum(v * v))
-    while run.events < max_collisions * n:
-        run.step(min(check_every * n, max_collisions * n - run.events))
-        if run.stop == "collapse":
-            return COLLAPSE, run.events / n, run.t_end
-        if run.finished:  # no_more_events or cooled_below_rounding: cooled without end
-            return COOLED, run.events / n, run.t_end
-        w = run.final()["xdot"]
-        w = w - w.mean()
-        if float(np.sum(w * w)) <= cooling * start:
-            return COOLED, run.events / n, run.t_end
-    return CAP, run.events / n, run.t_end
-
-
 def compute(spec: dict, inputs: dict) -> dict:
     seed, cooling = int(spec["seed"]), float(spec["cooling"])
     every, cap = int(spec["check_every"]), int(spec["max_collisions"])
     m = len(inputs["r"])
     out = {"outcome": np.zeros(m, dtype=np.int8), "collisions": np.zeros(m), "t_end": np.zeros(m)}
     for c in range(m):
-        rng = np.random.default_rng([seed, int(inputs["item"][c])])
-        out["outcome"][c], out["collisions"][c], out["t_end"][c] = run_one(
-            float(inputs["r"][c]), int(inputs["n"][c]), rng, cooling, every, cap)
+        x, v = ring_points(int(inputs["n"][c]), np.random.default_rng([seed, int(inputs["item"][c])]))
+        out["outcome"][c], out["collisions"][c], out["t_end"][c] = run_rigid_ring(
+            float(inputs["r"][c]), x, v, cooling, every, cap)
     return out
 
 

@@ -1,0 +1,70 @@
+"""Random gases on a ring, shared by the sweeps that compare rigid and deformable grains (beyond the paper).
+
+* :func:`ring_points`: n points on a ring of circumference n (unit density), positions uniform and sorted,
+  velocities standard normal times ``speed`` minus their mean (the centre-of-mass frame);
+* :func:`run_rigid_ring`: those points as rigid grains with constant restitution r until they collapse, cool by a
+  factor, or reach a collision cap (:mod:`bounce.sweeps.rigid_gas_collapse` explains the three outcomes);
+* :func:`dimer_state` and :func:`mu_of_restitution`: the same gas as dimers (the paper's balls, each of rest length
+  1, springs at rest) on a ring of circumference 2n, so that the free length per grain is the points' (a hard rod
+  of length 1 on a ring of 2n moves as a point on a ring of n), with the damping whose single-impact restitution
+  exp(-mu T_xi) (eq. ``rest-coefficient-function-of-mu``) is r.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..gas.model import GasState, RigidParameters, RigidState
+from ..gas.simulate import GasRun
+from .theory import rest_coefficient_function_of_mu
+
+COLLAPSE, COOLED, CAP = 0, 1, 2
+OUTCOMES = ("collapse", "cooled", "cap")
+
+
+def ring_points(n: int, rng: np.random.Generator, speed: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """(positions, velocities) of n points on a ring of circumference n, drawn by ``rng`` (positions first)."""
+    x = np.sort(rng.uniform(0.0, float(n), n))
+    v = rng.standard_normal(n)
+    v -= v.mean()
+    return x, speed * v
+
+
+def run_rigid_ring(r: float, x: np.ndarray, v: np.ndarray, cooling: float, check_every: int,
+                   max_collisions: int) -> tuple[int, float, float]:
+    """(outcome, collisions per grain, time of the last collision) of the points (x, v) as rigid grains."""
+    n = x.size
+    run = GasRun(RigidParameters(n, "ring", 0.0, r, ell=float(n), size=0.0), RigidState(x, v), math.inf, 0)
+    start = float(np.sum(v * v))  # (x, v) in the centre-of-mass frame (ring_points)
+    while run.events < max_collisions * n:
+        run.step(min(check_every * n, max_collisions * n - run.events))
+        if run.stop == "collapse":
+            return COLLAPSE, run.events / n, run.t_end
+        if run.finished:  # no_more_events or cooled_below_rounding: cooled without end
+            return COOLED, run.events / n, run.t_end
+        w = run.final()["xdot"]
+        w = w - w.mean()
+        if float(np.sum(w * w)) <= cooling * start:
+            return COOLED, run.events / n, run.t_end
+    return CAP, run.events / n, run.t_end
+
+
+def dimer_state(x: np.ndarray, v: np.ndarray) -> GasState:
+    """The points (x, v) of a ring of circumference n as dimers on a ring of 2n: grain k's lower mass at x_k + k, its
+    spring at rest (xi = xi' = 0), its centre of mass moving at v_k."""
+    n = x.size
+    return GasState(x + np.arange(n), v, np.zeros(n), np.zeros(n))
+
+
+def mu_of_restitution(r: float) -> float:
+    """The damping mu < 1 with exp(-mu T_xi(mu)) = r, 0 < r < 1 (bisection: r decreases in mu; to 2 ulps of mu)."""
+    if not 0.0 < r < 1.0:
+        raise ValueError(f"r must be in (0, 1), got {r!r}")
+    lo, hi = 0.0, 1.0
+    while True:
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            return mid
+        lo, hi = (mid, hi) if rest_coefficient_function_of_mu(mid) > r else (lo, mid)
