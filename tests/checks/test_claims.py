@@ -741,3 +741,18 @@ def test_nonlinear_atlas_flips_when_a_limit_is_off():
     bad = row(rows, "nonlinear-atlas/alpha-limit")
     assert bad.verdict == NOT_REPRODUCED and "outside: (a=0, b=0.5" in bad.measured
     assert row(rows, "nonlinear-atlas/flight-law").verdict == REPRODUCED
+
+
+def test_r_0969_holds_within_the_first_order_gravity_shift_and_flips_beyond_it():
+    """errata/r-0969 applies the bound it states: the simulated ratio within r mu T_xi delta of the second double
+    impact (2.3e-4 at the config's gamma = 1e-5; measured 9.2e-5), and the row flips for a ratio off by 3e-4."""
+    from types import SimpleNamespace
+
+    claim = next(c for c in errata.CLAIMS if c.id == "r-0969")
+    sp = spec("errata")
+    run = errata.Measurements(sp).rest_run
+    good = SimpleNamespace(rest_run=run)
+    assert claim.judge(good, sp).verdict == REPRODUCED
+    off = SimpleNamespace(**vars(run))
+    off.ratios = run.ratios / (1.0 + 3e-4 / run.r_paper)
+    assert claim.judge(SimpleNamespace(rest_run=off), sp).verdict == NOT_REPRODUCED

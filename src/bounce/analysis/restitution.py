@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .fitting import fit_limit
-from .theory import T_xi, our_r, rest_coefficient_function_of_mu, u_c
+from .theory import T_xi, contact_shortening, our_r, rest_coefficient_function_of_mu, u_c
 
 def event_arrays(ds):
     """(tau, Xdot, xi', y - y_eq, kind) per event of a complete (unthinned) scene dataset."""
@@ -44,7 +44,7 @@ def double_impact(ds, cfg) -> dict:
     after = psi_plus(2 * mp + 2) / psi_plus(2 * mp)  # consecutive take-off velocities
     before_after = -psi_minus(2 * mp + 1) / psi_plus(2 * mp + 2)  # printed orientation
     cr = contact[: P + 1] / Txi
-    delta = gamma * Txi * math.exp(mu * Txi) / (2.0 * V[: P + 1])
+    delta = contact_shortening(gamma, mu, V[: P + 1])
     return {"gamma": gamma, "mu": mu, "r0": r0, "Txi": Txi, "m": mp, "f": f, "r": r, "after": after,
             "before_after": before_after, "contact_ratio": cr, "delta": delta, "V": V[: P + 1],
             "run_len": run_len, "plateau": P, "r_all": f[1:] / f[:-1]}

@@ -275,6 +275,15 @@ def delta(gamma: float, mu: float) -> float:
     return mu * gamma / 3.0
 
 
+def contact_shortening(gamma: float, mu: float, V):
+    """delta = gamma T_xi e^(mu T_xi)/(2 V): the first-order relative shortening by gravity of a double impact landing
+    at speed V (beyond the paper: eq. ``char-times``'s contact lasts T_xi (1 - delta) + O(delta^2)), and the
+    first-order relative shift r mu T_xi delta of its restitution from eq. ``rest-coefficient-function-of-mu``
+    (the gamma -> 0 limit)."""
+    Txi = T_xi(mu)
+    return gamma * Txi * math.exp(mu * Txi) / (2.0 * np.asarray(V, dtype=float))
+
+
 def correction_exponent(mu: float) -> float:
     """Decay exponent p of n tau_n mu/3 - 1 (beyond the paper): min(1, 3 lam/mu).
 

@@ -34,8 +34,8 @@ from ..model import Deviations, Parameters, State
 from ..exact.oscillator import fundamental, make_oscillator
 from ..sampling import sample_trajectory
 from ..simulate import simulate
-from ..analysis.theory import (contact_derivatives, T_xi, rest_coefficient_function_of_mu, sticky_energy, sticky_onset,
-                               u_c)
+from ..analysis.theory import (contact_derivatives, contact_shortening, T_xi, rest_coefficient_function_of_mu,
+                               sticky_energy, sticky_onset, u_c)
 from . import base
 from .base import ERRATUM, NOT_REPRODUCED, PAPER, Check, Experiment, Verdict, claim, judge, variable
 
@@ -480,11 +480,15 @@ def yddot_at_onset(m, spec) -> Verdict:
 @claim(CLAIMS, "r-0969", PAPER, "fig:rest-coeff")
 def r_0969(m, spec) -> Verdict:
     r = m.rest_run
+    # the ratio spans the first two double impacts; the second lands slower, so its shift is the larger
+    shift = r.r_paper * r.mu * T_xi(r.mu) * float(contact_shortening(r.gamma, r.mu, r.trr.xdot[2]))
     return _row(
         "r = 0.969... for mu = 0.01", "sec. 8.1 (text before fig. rest-coeff)", "e^(-mu pi/sqrt(1 - mu^2))",
-        "0.969...", f"{r.r_paper:.10f}; simulated Psidot_{{n+2}}/Psidot_n = {1 / r.ratios[0]:.6f}",
-        "truncation to three decimals; the simulation to O(gamma) = 1e-4", math.floor(r.r_paper * 1000) == 969
-        and abs(1 / r.ratios[0] - r.r_paper) < 1e-3)
+        "0.969...", f"{r.r_paper:.10f}; simulated Psidot_{{n+2}}/Psidot_n = {1 / r.ratios[0]:.6f} "
+        f"(off by {1 / r.ratios[0] - r.r_paper:+.2g})",
+        f"truncation to three decimals; the simulation within the first-order gravity shift r mu T_xi delta = "
+        f"{shift:.2g} of the second double impact (gamma = {r.gamma:g}; eq. rest-coefficient-function-of-mu is the "
+        "gamma -> 0 limit)", math.floor(r.r_paper * 1000) == 969 and abs(1 / r.ratios[0] - r.r_paper) <= shift)
 
 
 @claim(CLAIMS, "char-times", PAPER, "fig:rest-coeff")

@@ -93,8 +93,9 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
         if P >= 3:
             r = d["r"]
             m.rm, m.rs = float(np.mean(r)), float(np.std(r, ddof=1))
+            m.se = m.rs / math.sqrt(r.size)  # the standard error of the mean
             m.corr = d["r0"] * d["mu"] * d["Txi"] * float(np.max(d["delta"]))
-            m.tol = spec["r_sigmas"] * m.rs + m.corr
+            m.tol = spec["r_sigmas"] * m.se + m.corr
         m.o = o = our_r_test(dsr, d, spec)
         data = data.assign(
             plateau_m=("plateau", d["m"].astype(float), {"long_name": "bounce index m of the plateau", "units": "1"}),
@@ -153,9 +154,9 @@ def r_plateau(m, spec) -> dict:
         f"{m.ctx}: mean and spread of r_m = f_(m+1)/f_m, f_m = tau_(2m), over the plateau m = 1..{m.P} "
         f"(f_m >= {spec['plateau_flight']:g} T_d)",
         f"r = exp(-mu pi/sqrt(1-mu^2)) = {d['r0']:.6f}",
-        f"mean r = {m.rm:.6f}, std {m.rs:.2g}, mean - r = {m.rm - d['r0']:+.2g}, max |r_m - r| = "
-        f"{np.max(np.abs(d['r'] - d['r0'])):.2g}",
-        f"|mean - r| <= {m.tol:.2g} = {spec['r_sigmas']:g} x plateau std + the first-order gravity correction "
+        f"mean r = {m.rm:.6f}, std {m.rs:.2g} (standard error {m.se:.2g}), mean - r = {m.rm - d['r0']:+.2g}, "
+        f"max |r_m - r| = {np.max(np.abs(d['r'] - d['r0'])):.2g}",
+        f"|mean - r| <= {m.tol:.2g} = {spec['r_sigmas']:g} x the mean's standard error + the first-order gravity correction "
         f"r mu T_xi max(delta_m) = {m.corr:.2g} (eq. rest-coefficient-function-of-mu is the gamma -> 0 limit)",
         judge(abs(m.rm - d["r0"]) <= m.tol))}
 
