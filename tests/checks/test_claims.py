@@ -741,6 +741,23 @@ def test_nonlinear_atlas_flips_when_a_limit_is_off():
     bad = row(rows, "nonlinear-atlas/alpha-limit")
     assert bad.verdict == NOT_REPRODUCED and "outside: (a=0, b=0.5" in bad.measured
     assert row(rows, "nonlinear-atlas/flight-law").verdict == REPRODUCED
+    # one cell not determined: "for every power law" is no longer shown (judge_every, as main-theorem/atlas-*)
+    ds = sweep("alpha-atlas").copy(deep=True)
+    ds["limit"].values[0, 0, 0, 1] = np.nan
+    rows = group.verdicts(group.measure(spec("nonlinear-atlas"), [ds]), spec("nonlinear-atlas"))
+    undetermined = row(rows, "nonlinear-atlas/flight-law")
+    assert undetermined.verdict == NOT_CHECKABLE and "not determined: (a=0, b=0" in undetermined.measured
+
+
+def test_a_claim_for_every_cell_has_one_policy():
+    """judge_every: a determined cell outside refutes; all determined cells inside but one undetermined: not
+    checkable; every cell determined and inside: reproduced."""
+    from bounce.checks.base import judge_every
+
+    assert judge_every([True, True, True], [True, True, True]) == REPRODUCED
+    assert judge_every([True, False, True], [True, True, False]) == NOT_REPRODUCED
+    assert judge_every([True, False, True], [True, False, True]) == NOT_CHECKABLE
+    assert judge_every([False, False], [False, False]) == NOT_CHECKABLE
 
 
 def test_r_0969_holds_within_the_first_order_gravity_shift_and_flips_beyond_it():

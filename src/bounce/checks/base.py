@@ -213,6 +213,19 @@ def judge(ok: bool) -> str:
     return REPRODUCED if ok else NOT_REPRODUCED
 
 
+def judge_every(ok, determined) -> str:
+    """The one policy of a claim "for every cell" of a grid (``ok``, ``determined``: booleans per cell; ``ok`` is read
+    where determined): a determined cell that fails refutes it (not reproduced); if every determined cell passes but
+    some cell is not determined the claim is not shown for every cell (not checkable); no cell determined: not
+    checkable."""
+    ok, determined = np.asarray(ok, dtype=bool), np.asarray(determined, dtype=bool)
+    if not determined.any():
+        return NOT_CHECKABLE
+    if not ok[determined].all():
+        return NOT_REPRODUCED
+    return REPRODUCED if determined.all() else NOT_CHECKABLE
+
+
 def verdict_dataset(verdicts: list[Verdict], data: xr.Dataset | None = None, title: str = "") -> xr.Dataset:
     """The check's numbers plus its verdicts as string variables on the dimension ``claim``."""
     ds = data.copy() if data is not None else xr.Dataset()

@@ -66,7 +66,7 @@ from ..analysis.fitting import fit_limit, log_select, transient_length
 from ..analysis import theory
 from ..analysis.observables import QUANTITIES, QUANTITY_CLAIMS, QUANTITY_LABELS, dataset_series, series_quantities
 from ..analysis.theory import contact_derivatives, correction_exponent
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, split_inputs
+from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, judge_every, split_inputs
 
 NAME = "main-theorem"
 
@@ -391,9 +391,10 @@ def _atlas_limit_claim(q: str):
             f"{[float(f'{v:.4g}') for v in atlas['gamma']]}, psi(0) = {atlas['psi0']:g}, {atlas['events']} events each; "
             "same fit as for the scenes",
             "L = 1 in every cell", measured,
-            f"|L - 1| <= max({k:g} x fit error, {floor:g}) in every fitted cell; unfitted cells (no decade "
-            f"after the transient, or fit error > {spec['err_max']:g}) make the row not checkable",
-            (judge(bool(np.all(z[fitted] <= 1.0))) if nfit == z.size else NOT_CHECKABLE) if nfit else NOT_CHECKABLE)}
+            f"|L - 1| <= max({k:g} x fit error, {floor:g}) in every cell; a fitted cell outside refutes the claim, "
+            f"unfitted cells (no decade after the transient, or fit error > {spec['err_max']:g}) leave it not "
+            "checkable (judge_every)",
+            judge_every(np.abs(L - 1.0) <= tol, fitted))}
     judge_atlas.__name__ = f"atlas_{q}_limit"
     return judge_atlas
 

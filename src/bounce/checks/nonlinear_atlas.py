@@ -20,7 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from .base import BEYOND, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, variable
+from .base import BEYOND, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge_every, variable
 
 NAME = "nonlinear-atlas"
 SUBJECT = "sec:Discussion"
@@ -70,14 +70,17 @@ def _atlas_verdict(m, quantity: str, value, err, target: float, text: str, ref: 
         return Verdict(text, ref, m.ctx, f"{what} = {target:g}", "no fitted cell" + none, "none", NOT_CHECKABLE)
     z = np.abs(v[fitted] - target) / np.maximum(e[fitted], np.finfo(float).tiny)
     worst = int(np.nonzero(fitted)[0][int(np.argmax(z))])
-    bad = [m.names[i] for i, f in enumerate(fitted) if f and abs(v[i] - target) > m.k * e[i]]
+    within = np.abs(v - target) <= m.k * e
+    bad = [m.names[i] for i in np.nonzero(fitted & ~within)[0]]
     return Verdict(
         text, ref, f"{m.ctx}: {what} per cell",
-        f"{what} = {target:g} in every fitted cell",
-        f"{int(fitted.sum())} cells fitted; max |{what} - {target:g}| = {np.max(np.abs(v[fitted] - target)):.2g}; worst "
-        f"in units of its error: {m.names[worst]}: {v[worst]:.10g} +- {e[worst]:.2g}"
-        + (f"; outside: {', '.join(bad)}" if bad else "") + none,
-        f"|{what} - {target:g}| <= {m.k:g} x the cell's error", judge(not bad))
+        f"{what} = {target:g} in every cell",
+        f"{int(fitted.sum())}/{fitted.size} cells fitted; max |{what} - {target:g}| = "
+        f"{np.max(np.abs(v[fitted] - target)):.2g}; worst in units of its error: {m.names[worst]}: {v[worst]:.10g} +- "
+        f"{e[worst]:.2g}" + (f"; outside: {', '.join(bad)}" if bad else "") + none,
+        f"|{what} - {target:g}| <= {m.k:g} x the cell's error in every cell; a cell outside refutes the claim, an "
+        "undetermined cell leaves it not checkable (judge_every: the policy of main-theorem/atlas-*)",
+        judge_every(within, fitted))
 
 
 CLAIMS: list = []
