@@ -280,10 +280,11 @@ def dimer_gas_keeps_cooling(m, spec) -> Verdict:
     last = np.array([row[np.isfinite(row)][-1] if np.isfinite(row).any() else np.nan for row in T])
     ok = (t_dimer > t_rigid) & ~np.isin(stops, ("overlap", "root_finder_failed", "collapse")) & (last < at_collapse)
     counts = ", ".join(f"{int((stops == s).sum())} {s}" for s in sorted(set(stops)))
+    ratio = (last / at_collapse)[np.isfinite(last / at_collapse)]
     measured = (f"{int(collapsed.sum())} of {collapsed.size} rigid runs collapsed (t = {t_rigid.min():.3g} .. "
                 f"{t_rigid.max():.3g}); their dimer runs ended: {counts}; last time / rigid collapse time in "
                 f"[{np.min(t_dimer / t_rigid):.3g}, {np.max(t_dimer / t_rigid):.3g}]; T at the last sample / T at the "
-                f"rigid collapse in [{np.nanmin(last / at_collapse):.3g}, {np.nanmax(last / at_collapse):.3g}]")
+                f"rigid collapse " + (f"in [{ratio.min():.3g}, {ratio.max():.3g}]" if ratio.size else "not sampled"))
     return Verdict(text, ref, computed,
                    "every such dimer run passes the rigid collapse time without an overlap, root-finder or collapse "
                    "stop, and is colder at its last sample than at the rigid collapse (a sticky contact, which the "

@@ -29,7 +29,6 @@ speed in those units.
 
 from __future__ import annotations
 
-
 import numpy as np
 import xarray as xr
 
