@@ -142,6 +142,8 @@ SWEEPS = {
     "rigid-gas-collapse": {"shards": 1, "r": [0.5, 0.7, 0.8], "n": {"min": 4, "max": 48, "n": 9}, "samples": 4,
                            "bootstrap": 50},
     "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
+    "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
+                     "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
 }
 
 
@@ -170,7 +172,8 @@ def inputs_for(name: str) -> list:
                 "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
-                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse")]}.get(name, [])
+                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),
+                                                                   sweep("ring-cooling")]}.get(name, [])
     return declared + list(experiments(name))
 
 

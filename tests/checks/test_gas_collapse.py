@@ -90,3 +90,85 @@ def test_dimer_claim_flips_when_the_dimers_stop_or_fall_short(changes, verdict):
     n_c = 5.0 / (1.0 - R)
     m = G.measure(SPEC, [sweep_like(n_c), dimers_like(**changes)])
     assert G.dimer_gas_no_collapse(m, SPEC).verdict == verdict
+
+
+SPEC_COOLING = dict(SPEC, haff_r_min=0.95, haff_window=[0.1, 4.0])
+TIMES = np.geomspace(1.0, 1e5, 41)
+NAMES = "max_events t_max no_more_events overlap sticky collapse root_finder_failed cooled_below_rounding"
+
+
+def cooling_like(law=-2.0, t0_factor=1.0, dimer_stop="t_max", dimer_t_end=1e5, dimer_warms=False, tc_stop="t_max"):
+    """A gathered ring-cooling dataset: r = 0.8 (rigid points collapse at t = 1e4) and 0.95 (they cool), 8 states
+    each with T_rigid = T0 (1 + t/t0)^law times a scatter of 2 % per state (t0 of the state, recorded as t0_factor
+    x t0); the dimers cool as t^-1 to dimer_t_end (or warm after the rigid collapse)."""
+    rng = np.random.default_rng(3)
+    shape = (2, 8)
+    t0 = 1000.0 * np.exp(0.1 * rng.standard_normal(shape))
+    T0 = np.full(shape, 1e-4)
+    tau = TIMES / t0[..., None]
+    rigid = T0[..., None] * (1.0 + tau) ** law * np.exp(0.02 * rng.standard_normal(shape + (1,)) * np.log1p(tau))
+    t_end_rigid = np.where(np.arange(2)[:, None] == 0, 1e4, 1e5) * np.ones(shape)
+    rigid[0][:, TIMES > 1e4] = np.nan
+    dimer = T0[..., None] / (1.0 + TIMES / 1000.0)
+    if dimer_warms:
+        dimer[..., TIMES > 1e4] *= 1e3
+    dimer[..., TIMES > dimer_t_end] = np.nan
+    code = NAMES.split().index
+    ds = xr.Dataset({"T0": (("r", "sample"), T0), "t0": (("r", "sample"), t0_factor * t0),
+                     "T_rigid": (("r", "sample", "time"), rigid), "T_dimer": (("r", "sample", "time"), dimer),
+                     "T_tc": (("r", "sample", "time"), T0[..., None] * (1.0 + tau) ** -1.5),
+                     "stop_rigid": (("r", "sample"), np.where(np.arange(2)[:, None] == 0, code("collapse"),
+                                                              code("t_max")) * np.ones(shape, dtype=np.int8)),
+                     "t_end_rigid": (("r", "sample"), t_end_rigid),
+                     "stop_dimer": (("r", "sample"), np.full(shape, code(dimer_stop), dtype=np.int8)),
+                     "t_end_dimer": (("r", "sample"), np.full(shape, dimer_t_end)),
+                     "stop_tc": (("r", "sample"), np.array([[code(tc_stop)] + [code("t_max")] * 7] * 2, dtype=np.int8)),
+                     "t_end_tc": (("r", "sample"), np.full(shape, 1e5))},
+                    coords={"r": [0.8, 0.95], "sample": np.arange(8), "time": TIMES})
+    ds.attrs.update(sweep="ring-cooling", n=100, t_c=3.14, horizon=1e5, stop_names=NAMES)
+    return ds
+
+
+def cooling_measure(**changes):
+    return G.measure(SPEC_COOLING, [sweep_like(5.0 / (1.0 - R)), cooling_like(**changes)])
+
+
+@pytest.mark.parametrize("changes, verdict", [
+    ({}, REPRODUCED),
+    ({"law": -1.0}, NOT_REPRODUCED),  # the wrong law: T ~ 1/t
+    ({"law": -2.0 / 3.0}, NOT_REPRODUCED),  # the sticky-gas law of late 1-D cooling
+    ({"t0_factor": 2.0}, NOT_REPRODUCED),  # Haff's t0 shifted: the law with the wrong parameter
+])
+def test_haff_claim_flips_with_the_law_or_its_t0(changes, verdict):
+    rows = G.haff_law(cooling_measure(**changes), SPEC_COOLING)
+    assert rows["r=0.95"].verdict == verdict
+    assert rows["r=0.8"].verdict == NOT_CHECKABLE  # below haff_r_min: reported, not judged
+
+
+def test_haff_exponents_recover_the_law():
+    alpha = G.haff_exponents(cooling_like(law=-2.0), [0.1, 4.0])
+    assert alpha.shape == (2, 8) and np.all(np.abs(alpha + 2.0) < 0.1)
+
+
+@pytest.mark.parametrize("changes, verdict", [
+    ({}, REPRODUCED),
+    ({"dimer_stop": "sticky", "dimer_t_end": 5e4}, REPRODUCED),  # a sticky stop past the rigid collapse: no failure
+    ({"dimer_stop": "overlap", "dimer_t_end": 5e4}, NOT_REPRODUCED),  # an engine stop
+    ({"dimer_stop": "sticky", "dimer_t_end": 5e3}, NOT_REPRODUCED),  # stopped before the rigid collapse
+    ({"dimer_warms": True}, NOT_REPRODUCED),  # a corrupted record: warmer after the rigid collapse
+])
+def test_dimer_cooling_claim_flips_on_a_stop_or_a_corrupted_record(changes, verdict):
+    assert G.dimer_gas_keeps_cooling(cooling_measure(**changes), SPEC_COOLING).verdict == verdict
+
+
+@pytest.mark.parametrize("tc_stop, verdict", [("t_max", REPRODUCED), ("collapse", NOT_REPRODUCED),
+                                              ("sticky", NOT_REPRODUCED)])
+def test_tc_claim_flips_when_a_run_stops_short(tc_stop, verdict):
+    assert G.tc_model_reaches_horizon(cooling_measure(tc_stop=tc_stop), SPEC_COOLING).verdict == verdict
+
+
+def test_cooling_claims_not_checkable_without_the_sweep():
+    m = G.measure(SPEC_COOLING, [sweep_like(5.0 / (1.0 - R))])
+    assert G.haff_law(m, SPEC_COOLING).verdict == NOT_CHECKABLE
+    assert G.dimer_gas_keeps_cooling(m, SPEC_COOLING).verdict == NOT_CHECKABLE
+    assert G.tc_model_reaches_horizon(m, SPEC_COOLING).verdict == NOT_CHECKABLE

@@ -8,6 +8,9 @@
   1, springs at rest) on a ring of circumference 2n, so that the free length per grain is the points' (a hard rod
   of length 1 on a ring of 2n moves as a point on a ring of n), with the damping whose single-impact restitution
   exp(-mu T_xi) (eq. ``rest-coefficient-function-of-mu``) is r.
+* :func:`collision_rate`: the collision rate per grain of points with given velocities at uniform positions;
+* :func:`states_at`: every grain's state at given times of a run, exact to rounding (the sweeps that follow a gas in
+  time).
 """
 
 from __future__ import annotations
@@ -68,3 +71,52 @@ def mu_of_restitution(r: float) -> float:
         if mid in (lo, hi):
             return mid
         lo, hi = (mid, hi) if rest_coefficient_function_of_mu(mid) > r else (lo, mid)
+
+
+def collision_rate(v: np.ndarray, ell: float) -> float:
+    """Collisions per grain per unit time of points with velocities v at independent uniform positions on a ring of
+    circumference ell: 2 sum_{i<j} |v_i - v_j| / (n ell) (a pair meets once per relative lap ell/|v_i - v_j|; each
+    collision counts for two grains).  Elastic points keep it for ever (they exchange velocities: the free gas
+    relabelled), so it is the initial rate of any restitution; for standard normal v times s at density 1 it tends to
+    2 s/sqrt(pi)."""
+    w = np.sort(np.asarray(v, dtype=float))
+    n = w.size
+    pairs = float(np.sum(w * (2.0 * np.arange(n) - (n - 1))))  # sum_{i<j} (w_j - w_i) of the sorted velocities
+    return 2.0 * pairs / (n * ell)
+
+
+def states_at(run: GasRun, times: np.ndarray, chunk: int) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """(every grain's state at each of the increasing ``times``: the engine's fields as arrays (times, n); the events
+    up to each time), exact to rounding.
+
+    The run is stepped ``chunk`` events at a time; a chunk that passes the next time is undone
+    (:meth:`~bounce.gas.simulate.GasRun.restore`, bit for bit) and replayed up to the last event at or before that time,
+    where the grains are evaluated in closed form (:meth:`~bounce.gas.simulate.GasRun.at`), so each row is the state
+    at its time whatever ``chunk`` is (replays cost at most ``chunk`` events per time).  A time after a run that reached
+    its t_max or has no event left is the free motion after its last event; a time after any other stop (collapse,
+    an engine stop) gets NaN and -1 events.
+    """
+    times = np.asarray(times, dtype=float)
+    out = {name: np.full((times.size, run.params.n), np.nan) for name in run.fields}
+    events = np.full(times.size, -1, dtype=np.int64)
+    i = 0
+
+    def record(i: int) -> None:
+        for name, value in run.at(float(times[i])).items():
+            out[name][i] = value
+        events[i] = run.events
+
+    while i < times.size and not run.finished:
+        saved = run.arrays()
+        rec, k, _ = run.step(chunk)
+        before = int(np.searchsorted(rec.t[:k], times[i], side="right"))
+        if before < k:
+            run.restore(saved)
+            if before:
+                run.step(before)
+            record(i)
+            i += 1
+    while i < times.size and run.stop in ("t_max", "no_more_events") and times[i] <= run.t_max:
+        record(i)
+        i += 1
+    return out, events

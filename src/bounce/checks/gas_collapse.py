@@ -22,6 +22,19 @@ setting) and ``dimer-gas-collapse`` (:mod:`bounce.sweeps.dimer_gas_collapse`), a
 5. ``dimer-gas-no-collapse``: from the states whose rigid twin collapsed (sweep ``dimer-gas-collapse``, ~10 N_c
    grains), the gas of dimers with the same restitution exp(-mu T_xi) = r runs its whole budget of collisions without
    an engine stop, more collisions per grain than its twin made, to a time past the twin's collapse.
+6. ``haff-law`` (one row per r >= ``haff_r_min`` of sweep ``ring-cooling``): before clustering the rigid gas cools
+   as Haff's T = T0 / (1 + t/t0)^2, t0 = 2 / ((1 - r^2) omega0) from each state's initial collision rate omega0.  Per
+   state, the exponent alpha of log(T/T0) = alpha log(1 + t/t0) is fitted (least squares through the origin: T0 and
+   t0 fixed) over t/t0 in ``haff_window``; reproduced if |mean alpha + 2| <= ``sigmas`` x its standard error over the
+   states.  Haff's law is the quasi-elastic law (molecular chaos, Gaussian velocities): measured on this ring
+   (n = 100, 32 states, window [0.1, 4]), alpha = -1.87 +- 0.027 at r = 0.8, -1.94 +- 0.018 at 0.9, -1.980 +- 0.009
+   at 0.95: the 1-D gas cools more slowly than Haff by ~(1 - r) already before it clusters, so r < ``haff_r_min``
+   (default 0.95) are reported, not judged.
+7. ``dimer-gas-keeps-cooling``: where the rigid points of a ``ring-cooling`` state collapsed before the horizon, its
+   dimers (exp(-mu T_xi) = r) go on past the collapse time without an overlap or a root-finder stop, and are colder
+   at their last sample than at the last sample before the rigid collapse.
+8. ``tc-model-reaches-horizon``: every run of the TC model reaches the horizon (the regularisation removes the
+   collapse), with a finite temperature there.
 
 What N_c means here: the number of grains at which half of the random states collapse (before cooling by the sweep's
 factor), a typical number; McNamara and Young's scaling is for the minimum number that makes a collapse possible,
@@ -97,7 +110,25 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     ctx = (f"sweep rigid-gas-collapse: points on a ring of circumference n, {int(ds.attrs['samples'])} random states "
            f"per (r, n), n in [{int(ds['n'].values[0])}, {int(ds['n'].values[-1])}]")
     return SimpleNamespace(ds=ds, r=r, n_c=n_c, err=err, beta=beta, beta_err=beta_err, c=c, points=points,
-                           data=data, ctx=ctx, dimers=dimers)
+                           data=data, ctx=ctx, dimers=dimers, cooling=named.get("ring-cooling"))
+
+
+def haff_exponents(cooling: xr.Dataset, window) -> np.ndarray:
+    """Per (r, state): alpha of log(T/T0) = alpha log(1 + t/t0) (least squares through the origin, T0 and t0 the
+    state's) over the times with t/t0 in ``window`` and a finite T of the rigid points; NaN with fewer than 2 times."""
+    t = cooling["time"].values
+    x = np.log1p(t[None, None, :] / cooling["t0"].values[..., None])
+    y = np.log(cooling["T_rigid"].values / cooling["T0"].values[..., None])
+    tau = t[None, None, :] / cooling["t0"].values[..., None]
+    use = (tau >= window[0]) & (tau <= window[1]) & np.isfinite(y)
+    xx, xy = np.where(use, x * x, 0.0).sum(axis=-1), np.where(use, x * y, 0.0).sum(axis=-1)
+    return np.where(use.sum(axis=-1) >= 2, xy / np.where(xx > 0, xx, 1.0), np.nan)
+
+
+def _cooling_ctx(c: xr.Dataset) -> str:
+    return (f"sweep ring-cooling: {c.sizes['sample']} random states of n = {int(c.attrs['n'])} points per r, r in "
+            f"{list(map(float, c['r'].values))}, each as rigid points, with the TC model (t_c = {c.attrs['t_c']:g}) and "
+            f"as dimers, to the horizon t = {c.attrs['horizon']:g}")
 
 
 CLAIMS: list = []
@@ -186,6 +217,98 @@ def dimer_gas_no_collapse(m, spec) -> Verdict:
                    "every dimer gas whose rigid twin collapsed runs its whole budget, more collisions per grain than the "
                    "twin, to a time past the twin's collapse", measured,
                    "exact (the engine's stop and the recorded times)", judge(bool(ok.all())))
+
+
+_NO_COOLING = "no sweep ring-cooling among the inputs"
+
+
+@claim(CLAIMS, "haff-law", BEYOND, SUBJECT)
+def haff_law(m, spec):
+    text = "a rigid gas cools by Haff's law T = T0 / (1 + t/t0)^2 before it clusters"
+    ref = "Haff 1983; the rigid models of the introduction (beyond the paper)"
+    c = m.cooling
+    if c is None:
+        return Verdict(text, ref, _NO_COOLING, "", "", "none", NOT_CHECKABLE)
+    window, k, r_min = spec["haff_window"], float(spec["sigmas"]), float(spec["haff_r_min"])
+    alpha = haff_exponents(c, window)
+    computed = (f"{_cooling_ctx(c)}: per state, alpha of log(T/T0) = alpha log(1 + t/t0), t0 = 2/((1-r^2) omega0) "
+                f"from its initial collision rate, fitted over t/t0 in [{window[0]:g}, {window[1]:g}]")
+    rows = {}
+    for i, r in enumerate(c["r"].values):
+        a = alpha[i][np.isfinite(alpha[i])]
+        if a.size < 2:
+            rows[f"r={r:g}"] = Verdict(text, ref, computed, "alpha = -2", f"{a.size} state(s) with a fit",
+                                       "none", NOT_CHECKABLE)
+            continue
+        mean, se = float(a.mean()), float(a.std(ddof=1) / math.sqrt(a.size))
+        measured = f"alpha = {mean:.3f} +- {se:.2g} ({a.size} states)"
+        if r < r_min:
+            rows[f"r={r:g}"] = Verdict(text, ref, computed, "alpha = -2", measured + f"; not judged: r < {r_min:g}, "
+                                       "outside the quasi-elastic law's range (module docstring)", "none",
+                                       NOT_CHECKABLE)
+            continue
+        rows[f"r={r:g}"] = Verdict(text, ref, computed, "alpha = -2 (Haff)", measured,
+                                   f"|alpha + 2| <= {k:g} x its standard error over the states",
+                                   judge(abs(mean + 2.0) <= k * se))
+    return rows
+
+
+def _stops(c: xr.Dataset, model: str) -> list[str]:
+    names = str(c.attrs["stop_names"]).split()
+    return [names[int(code)] for code in c[f"stop_{model}"].values.ravel()]
+
+
+@claim(CLAIMS, "dimer-gas-keeps-cooling", BEYOND, SUBJECT)
+def dimer_gas_keeps_cooling(m, spec) -> Verdict:
+    text = ("a cooling gas of dimers (the paper's balls) goes on cooling past the time its rigid twin collapses, "
+            "without collapse")
+    ref = "introduction and Discussion (internal vibrations remove the collapse); Paparella and Passoni"
+    c = m.cooling
+    if c is None:
+        return Verdict(text, ref, _NO_COOLING, "", "", "none", NOT_CHECKABLE)
+    collapsed = np.array(_stops(c, "rigid")) == "collapse"
+    computed = _cooling_ctx(c) + "; the states whose rigid points collapsed before the horizon"
+    if not collapsed.any():
+        return Verdict(text, ref, computed, "some rigid runs collapse", "no rigid run collapsed", "none",
+                       NOT_CHECKABLE)
+    t = c["time"].values
+    t_rigid = c["t_end_rigid"].values.ravel()[collapsed]
+    t_dimer = c["t_end_dimer"].values.ravel()[collapsed]
+    stops = np.array(_stops(c, "dimer"))[collapsed]
+    T = c["T_dimer"].values.reshape(-1, t.size)[collapsed]
+    at_collapse = np.array([T[s][t <= t_rigid[s]][-1] if (t <= t_rigid[s]).any() else np.nan for s in range(T.shape[0])])
+    last = np.array([row[np.isfinite(row)][-1] if np.isfinite(row).any() else np.nan for row in T])
+    ok = (t_dimer > t_rigid) & ~np.isin(stops, ("overlap", "root_finder_failed", "collapse")) & (last < at_collapse)
+    counts = ", ".join(f"{int((stops == s).sum())} {s}" for s in sorted(set(stops)))
+    ratio = (last / at_collapse)[np.isfinite(last / at_collapse)]
+    measured = (f"{int(collapsed.sum())} of {collapsed.size} rigid runs collapsed (t = {t_rigid.min():.3g} .. "
+                f"{t_rigid.max():.3g}); their dimer runs ended: {counts}; last time / rigid collapse time in "
+                f"[{np.min(t_dimer / t_rigid):.3g}, {np.max(t_dimer / t_rigid):.3g}]; T at the last sample / T at the "
+                f"rigid collapse " + (f"in [{ratio.min():.3g}, {ratio.max():.3g}]" if ratio.size else "not sampled"))
+    return Verdict(text, ref, computed,
+                   "every such dimer run passes the rigid collapse time without an overlap, root-finder or collapse "
+                   "stop, and is colder at its last sample than at the rigid collapse (a sticky contact, which the "
+                   "engine does not follow, ends a run without failing it)", measured,
+                   "exact (the engine's stops and the sampled temperatures)", judge(bool(ok.all())))
+
+
+@claim(CLAIMS, "tc-model-reaches-horizon", BEYOND, SUBJECT)
+def tc_model_reaches_horizon(m, spec) -> Verdict:
+    text = "the TC model (Luding and McNamara) removes the rigid gas's collapse: its runs reach any time"
+    ref = "Luding and McNamara 1998 (beyond the paper)"
+    c = m.cooling
+    if c is None:
+        return Verdict(text, ref, _NO_COOLING, "", "", "none", NOT_CHECKABLE)
+    stops = np.array(_stops(c, "tc"))
+    last = c["T_tc"].values[..., -1].ravel()
+    ok = (stops == "t_max") & np.isfinite(last) & (last > 0)
+    collapsed = int((np.array(_stops(c, "rigid")) == "collapse").sum())
+    counts = ", ".join(f"{int((stops == s).sum())} {s}" for s in sorted(set(stops)))
+    return Verdict(text, ref, _cooling_ctx(c) + f" ({collapsed} of {stops.size} runs without the TC model collapse)",
+                   f"every TC run reaches the horizon t = {c.attrs['horizon']:g} with T > 0", f"TC runs ended: {counts}; "
+                   f"T/T0 at the horizon in [{np.nanmin(last / c['T0'].values.ravel()):.3g}, "
+                   f"{np.nanmax(last / c['T0'].values.ravel()):.3g}]", "exact (the engine's stops)",
+                   judge(bool(ok.all())))
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:

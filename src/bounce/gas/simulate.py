@@ -100,8 +100,7 @@ class GasRun:
         self.records = None
         self.times = np.full(2 * TREND_EVENTS + 1, np.nan)  # the last event times (rigid gas, :meth:`_cooled`)
         if arrays is not None:
-            for name in self._state_names():
-                getattr(self, name)[...] = arrays[name]
+            self.restore(arrays)
         elif self.rigid:
             self.g[:, R_X], self.g[:, R_V] = initial.x, initial.xdot
             self.g[:, R_LAST] = -np.inf
@@ -120,6 +119,13 @@ class GasRun:
     def arrays(self) -> dict[str, np.ndarray]:
         """The engine's whole state (grains, slots, queue, control): copies."""
         return {name: getattr(self, name).copy() for name in self._state_names()}
+
+    def restore(self, arrays: dict) -> None:
+        """Back to a state of :meth:`arrays` of this run: the steps taken since are undone bit for bit (the kernels keep
+        their whole state in these arrays)."""
+        for name in self._state_names():
+            getattr(self, name)[...] = arrays[name]
+        self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
 
     @property
     def events(self) -> int:
@@ -186,8 +192,13 @@ class GasRun:
 
     def final(self) -> dict[str, np.ndarray]:
         """Every grain's state at the time of the last event (t = 0 before any)."""
+        return self.at(self.clock[K_HI], self.clock[K_LO])
+
+    def at(self, t_hi: float, t_lo: float = 0.0) -> dict[str, np.ndarray]:
+        """Every grain's state at time t_hi + t_lo, in closed form from its last event: exact (to rounding) for a time
+        between the last event and the next one (not checked: later than the next event it is the free motion through
+        that contact)."""
         out = np.empty((len(self.fields), 1, self.params.n))
-        t_hi, t_lo = self.clock[K_HI], self.clock[K_LO]
         if self.rigid:
             rigid_snapshot(self.g, t_hi, t_lo, self.params.gamma, out, 0)
         else:
