@@ -87,6 +87,7 @@ OVERRIDES = {
     "onefifth-rest-coeff": {},
     "nonlinear-atlas": {},
     "gas-collapse": {"scaling_r_min": 0.5},
+    "gas-column": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -142,6 +143,7 @@ SWEEPS = {
     "rigid-gas-collapse": {"shards": 1, "r": [0.5, 0.7, 0.8], "n": {"min": 4, "max": 48, "n": 9}, "samples": 4,
                            "bootstrap": 50},
     "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
+    "column-drop": {"shards": 1, "r": [0.9], "n": [1, 2, 4], "samples": 1},
 }
 
 
@@ -170,7 +172,8 @@ def inputs_for(name: str) -> list:
                 "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
-                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse")]}.get(name, [])
+                "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse")],
+                "gas-column": [sweep("column-drop")]}.get(name, [])
     return declared + list(experiments(name))
 
 
