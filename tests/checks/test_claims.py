@@ -87,6 +87,7 @@ OVERRIDES = {
     "onefifth-rest-coeff": {},
     "nonlinear-atlas": {},
     "gas-collapse": {"scaling_r_min": 0.5},
+    "gas-column": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -144,6 +145,7 @@ SWEEPS = {
     "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
     "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
                      "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
+    "column-drop": {"shards": 1, "r": [0.9], "n": [1, 2, 4], "samples": 1},
 }
 
 
@@ -173,7 +175,8 @@ def inputs_for(name: str) -> list:
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
                 "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),
-                                                                   sweep("ring-cooling")]}.get(name, [])
+                                                                   sweep("ring-cooling")],
+                "gas-column": [sweep("column-drop")]}.get(name, [])
     return declared + list(experiments(name))
 
 
