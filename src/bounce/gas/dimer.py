@@ -215,6 +215,11 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
         t_start, t_limit, proves = 0.0, room, False
     status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs,
                                                   work)
+    if status == -1 and G == 0.0 and eta * eta + a * a <= rounding_level(scale0) ** 2:
+        # a pair in touch at relative rest with its springs' sum s at rest to rounding: relaxed (module docstring),
+        # the gap stays 0 until an event changes a grain; no contact predicted (it was queued as a sticky onset)
+        update(s, math.inf, 0.0, heap, pos, khi, klo)
+        return
     kind = T_CONTACT
     if status == FOUND or status == -1 or status == FAILED:
         if status == -1:
