@@ -56,7 +56,7 @@ from ..gas.simulate import simulate_rigid
 from .base import BEYOND, NOT_CHECKABLE, Check, Verdict, claim, judge, split_inputs, variable
 
 NAME = "gas-collapse"
-SUBJECT = "sec:introduction"
+SUBJECT = "beyond:gases"
 R_C = 7.0 - 4.0 * math.sqrt(3.0)
 #: McNamara and Young's number of grains for r = 0.95 (their cooling runs between inelastic boundaries)
 MY_NC_095 = 88.0

@@ -43,7 +43,7 @@ from ..gas.common import STOP_COLLAPSE, STOP_EVENTS
 from .base import BEYOND, NOT_CHECKABLE, Check, Verdict, claim, judge, split_inputs, variable
 
 NAME = "gas-column"
-SUBJECT = "sec:introduction"
+SUBJECT = "beyond:gases"
 MARKERS = "osD^v<>"
 
 
