@@ -157,13 +157,34 @@ def test_memory_estimate_refuses_up_front(monkeypatch):
 
 
 def test_cli_refuses_too_many_events_before_simulating(tmp_path, capsys, monkeypatch):
+    """A run that needs every record in memory (--dt-sample) is refused up front when they would not fit."""
     monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
     out = tmp_path / "big.nc"
     code = main(["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
-                 "--xidot0", "0", "--events", "3e8", "--out", str(out)])
+                 "--xidot0", "0", "--events", "3e8", "--dt-sample", "1", "--out", str(out)])
     err = capsys.readouterr().err
-    assert code == 2 and err.startswith("error: --events 300000000 needs ~") and "--stream" in err
+    assert code == 2 and err.startswith("error: --events 300000000 needs ~") and "no --dt-sample" in err
     assert len(err.strip().splitlines()) == 1 and not list(tmp_path.iterdir())
+
+
+def test_cli_streams_by_default_past_one_chunk(tmp_path, capsys, monkeypatch):
+    """Memory is bounded by default (issue 22): without --stream a closed-form run of more events than --chunk
+    streams (here where its one-shot records would not fit), gives the one-shot run's records, and an interrupted
+    one resumes with the same command and --resume; up to one chunk it runs in one call, as before."""
+    monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
+            "--xidot0", "0", "--no-progress"]
+    assert main([*args, "--events", "3e8", "--t-max", "30", "--out", str(tmp_path / "long.nc")]) == 0
+    assert "stop: t_max" in capsys.readouterr().out
+    assert main([*args, "--events", "5000", "--chunk", "1000", "--out", str(tmp_path / "auto.nc")]) == 0
+    assert "(5000 records)" in capsys.readouterr().out  # the stream's summary
+    assert main([*args, "--events", "5000", "--out", str(tmp_path / "one.nc")]) == 0
+    assert "records)" not in capsys.readouterr().out
+    auto, one = (read_dataset(tmp_path / name) for name in ("auto.nc", "one.nc"))
+    for name in ("t", "tau", "xdot", "xidot", "eta", "energy_excess", "kind"):
+        np.testing.assert_array_equal(auto[name].values, one[name].values)
+    code = main([*args, "--events", "100", "--resume", "--out", str(tmp_path / "short.nc")])
+    assert code == 2 and "--resume continues a streamed run" in capsys.readouterr().err
 
 
 def test_cli_stream_takes_more_events_than_memory_and_checks_the_chunk(tmp_path, capsys, monkeypatch):
@@ -194,7 +215,7 @@ def test_cli_stream_equals_cli_one_shot(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("extra, message", [
-    (["--resume"], "--resume continues a --stream run"),
+    (["--resume"], "--resume continues a streamed run"),
     (["--keep-first", "10"], "--keep-first and --keep-log go together"),
     (["--keep-first", "10", "--keep-log", "5"], "add --stream"),
     (["--stream", "--dt-sample", "0.1"], "does not combine with --stream"),
@@ -218,9 +239,11 @@ def test_cli_progress_bar_on_request_only(tmp_path, capsys):
     assert all(np.array_equal(a[v].values, b[v].values) for v in a.data_vars)
 
 
-def test_cli_interrupted_stream_resumes(tmp_path, capsys, monkeypatch):
+@pytest.mark.parametrize("flag", [["--stream"], []], ids=["stream", "default"])
+def test_cli_interrupted_stream_resumes(flag, tmp_path, capsys, monkeypatch):
+    """Also without --stream: a run of more events than --chunk streams by default and resumes alike."""
     args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
-            "--xidot0", "0", "--events", "5000", "--stream", "--chunk", "1000"]
+            "--xidot0", "0", "--events", "5000", *flag, "--chunk", "1000"]
     real = stream.run_events
     calls = {"n": 0}
 

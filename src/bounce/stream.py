@@ -74,13 +74,14 @@ def available_memory() -> int:
     return int(avail) if math.isfinite(avail) else 1 << 62
 
 
-def check_memory(events: int, bytes_per_event: int = BYTES_PER_EVENT, option: str = "--events") -> None:
-    """Refuse up front a run whose records would not fit in memory, with the estimate."""
+def check_memory(events: int, bytes_per_event: int = BYTES_PER_EVENT, option: str = "--events",
+                 hint: str = "") -> None:
+    """Refuse up front a run whose records would not fit in memory, with the estimate (and ``hint``: what to do)."""
     need = events * bytes_per_event + BASELINE_BYTES
     have = available_memory()
     if need > have:
         most = max((have - BASELINE_BYTES) // bytes_per_event, 0)
-        hint = "use --stream (bounded memory)" if option == "--events" else f"use a smaller {option}"
+        hint = hint or ("use --stream (bounded memory)" if option == "--events" else f"use a smaller {option}")
         raise InputError(
             f"{option} {events} needs ~{need / 1e9:.3g} GB of memory ({bytes_per_event} bytes per event), "
             f"{have / 1e9:.3g} GB available (allowed range here: [1, {most}]): {hint}"
