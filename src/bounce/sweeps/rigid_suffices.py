@@ -236,41 +236,43 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     from ..figures.common import WIDTH, save
 
     r, ns, horizon = ds["r"].values, ds["n"].values, float(ds.attrs["horizon"])
-    fig, axes = plt.subplots(1, 3, figsize=(WIDTH * 1.25, 3.0), constrained_layout=True,
-                             gridspec_kw={"width_ratios": [1, 1, 1]})
-    maps = [("t_seq", "(a) collision sequences part"), ("t_temp", f"(b) temperatures part "
-                                                                 f"(>{100 * ds.attrs['temperature_rtol']:g} %)")]
+    fig, axes = plt.subplots(1, 3, figsize=(WIDTH * 1.3, 3.3), constrained_layout=True)
+    maps = [("t_seq", "(a) collision sequences part"),
+            ("t_temp", f"(b) temperatures part (by > {100 * ds.attrs['temperature_rtol']:g} %)")]
     norm = LogNorm(float(ds["time"].values[0]), horizon)
+    collapsed = np.mean(ds["rigid_stop"].values == STOP_NAMES.index("collapse"), axis=-1) >= 0.5
     for ax, (name, title) in zip(axes, maps):
         med = cell_medians(ds, name)
         shown = np.where(np.isfinite(med), med, horizon)
         mesh = ax.pcolormesh(np.arange(ns.size + 1), np.arange(r.size + 1), shown, norm=norm, cmap="viridis_r")
         for i in range(r.size):
             for j in range(ns.size):
-                text = f"{med[i, j]:.2g}" if np.isfinite(med[i, j]) else f">{horizon:g}"
-                collapsed = np.mean(ds["rigid_stop"].values[i, j] == STOP_NAMES.index("collapse"))
-                ax.text(j + 0.5, i + 0.5, text + ("\n(c)" if collapsed >= 0.5 else ""), ha="center", va="center",
-                        fontsize=6, color="w" if shown[i, j] < norm.vmin * (horizon / norm.vmin) ** 0.5 else "k")
+                m = med[i, j]
+                text = (f">{horizon:g}" if not np.isfinite(m) else f"{m:.0f}" if m >= 10 else f"{m:.2g}")
+                dark = norm(shown[i, j]) > 0.55
+                ax.text(j + 0.5, i + 0.5, text + ("\ncollapse" if collapsed[i, j] else ""), ha="center",
+                        va="center", fontsize=6.5, color="w" if dark else "k")
         ax.set_xticks(np.arange(ns.size) + 0.5, [str(n) for n in ns])
         ax.set_yticks(np.arange(r.size) + 0.5, [f"{x:g}" for x in r])
         ax.set(xlabel="number of grains n", ylabel="restitution r")
         ax.set_title(title, fontsize=8)
         ax.grid(False)
-    fig.colorbar(mesh, ax=axes[:2], label=r"median parting time, in mean free times $1/\omega_0$", shrink=0.9)
+    fig.colorbar(mesh, ax=axes[:2], location="bottom", shrink=0.6, aspect=40,
+                 label=r"median parting time over the states, in mean free times $1/\omega_0$")
     ax = axes[2]
     for i, x in enumerate(r):
         seq, unres = ds["t_seq"].values[i].ravel(), ds["t_unresolved"].values[i].ravel()
         ok = np.isfinite(seq) & np.isfinite(unres)
         ax.loglog(unres[ok], seq[ok], "o", ms=3, mfc="none", label=f"r = {x:g}")
     lo, hi = ax.get_xlim()
-    ax.plot([lo, hi], [lo, hi], "k-", lw=0.6, label="parting = first unresolved collision")
-    ax.set(xlabel=r"rigid gas: first collision within $T_\xi$ of a grain's previous ($1/\omega_0$)",
+    ax.plot([lo, hi], [lo, hi], "k-", lw=0.6, label="equal")
+    ax.set(xlabel=r"first two collisions of a grain closer than $T_\xi$ ($1/\omega_0$)",
            ylabel=r"collision sequences part ($1/\omega_0$)")
-    ax.set_title("(c) what parts them: collisions closer than a contact time", fontsize=8)
-    ax.legend(fontsize=5.5)
-    fig.suptitle(f"where the rigid gas (restitution r) reproduces the dimer gas (exp(-mu T_xi) = r) on a ring: median "
-                 f"over {int(ds.attrs['samples'])} states, rms speed {ds.attrs['speed']:g}; (c): the rigid gas "
-                 f"collapses in most states; times dimensionless", fontsize=7)
+    ax.set_title("(c) each state: what parts the sequences", fontsize=8)
+    ax.legend(fontsize=6)
+    fig.suptitle(f"Where the rigid gas (restitution r) reproduces the dimer gas (exp(-mu T_xi) = r) on a ring: "
+                 f"{int(ds.attrs['samples'])} states per cell, rms speed {ds.attrs['speed']:g}, horizon "
+                 f"{horizon:g} mean free times; 'collapse': the rigid gas collapses in most states", fontsize=7)
     save(fig, outputs)
 
 
