@@ -144,6 +144,8 @@ SWEEPS = {
     "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
     "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
                      "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
+    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [10, 40], "samples": 2, "horizon": 100.0,
+                       "time": {"min": 0.1, "points": 12}},
 }
 
 
@@ -173,7 +175,8 @@ def inputs_for(name: str) -> list:
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
                 "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),
-                                                                   sweep("ring-cooling")]}.get(name, [])
+                                                                   sweep("ring-cooling")],
+                "rigid-model-suffices": [sweep("rigid-suffices")]}.get(name, [])
     return declared + list(experiments(name))
 
 
