@@ -87,6 +87,7 @@ OVERRIDES = {
     "onefifth-rest-coeff": {},
     "nonlinear-atlas": {},
     "gas-collapse": {"scaling_r_min": 0.5},
+    "rigid-model-suffices": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -144,7 +145,7 @@ SWEEPS = {
     "dimer-gas-collapse": {"shards": 1, "r": [0.5], "n": [60], "samples": 2, "collisions": 200},
     "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
                      "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
-    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [10, 40], "samples": 2, "horizon": 100.0,
+    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [20, 60], "samples": 4, "horizon": 100.0,
                        "time": {"min": 0.1, "points": 12}},
 }
 

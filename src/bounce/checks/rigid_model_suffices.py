@@ -131,7 +131,9 @@ def temperature_holds_to_collapse(m, spec) -> Verdict:
     collapses = np.mean(np.isfinite(ds["collapse_time"].values), axis=-1) >= 0.5
     if not collapses.any():
         return Verdict(text, REF, computed, "median >= 1", "no cell collapses in most states", "none", NOT_CHECKABLE)
-    med = np.nanmedian(ds["t_temp_collapse"].values, axis=-1)  # over the states that collapsed (NaN: the others)
+    ratio = ds["t_temp_collapse"].values  # NaN in the states that did not collapse
+    med = np.full(collapses.shape, np.nan)
+    med[collapses] = [np.nanmedian(ratio[i, j]) for i, j in zip(*np.nonzero(collapses))]
     step = float(ds["time"].values[1] / ds["time"].values[0])
     cells = "; ".join(f"r={m.r[i]:g}, n={m.ns[j]}: {med[i, j]:.3g}" for i, j in zip(*np.nonzero(collapses)))
     return Verdict(text, REF, computed, "median t_temp / t_collapse >= 1 in every such cell",
