@@ -10,7 +10,10 @@
   exp(-mu T_xi) (eq. ``rest-coefficient-function-of-mu``) is r.
 * :func:`collision_rate`: the collision rate per grain of points with given velocities at uniform positions;
 * :func:`states_at`: every grain's state at given times of a run, exact to rounding (the sweeps that follow a gas in
-  time).
+  time);
+* :func:`contacts`, :func:`merge_contacts`, :func:`partner_sides`, :func:`parting`: a run's contacts, the dimers'
+  micro-impacts merged into collisions, each grain's ordered partners, and the first collision where two gases' grain
+  histories differ (sweep ``rigid-suffices``).
 """
 
 from __future__ import annotations
