@@ -88,6 +88,7 @@ OVERRIDES = {
     "nonlinear-atlas": {},
     "gas-collapse": {"scaling_r_min": 0.5},
     "gas-column": {},
+    "rigid-model-suffices": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
 }
@@ -146,6 +147,8 @@ SWEEPS = {
     "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
                      "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
     "column-drop": {"shards": 1, "r": [0.9], "n": [1, 2, 4], "samples": 1},
+    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [20, 60], "samples": 4, "horizon": 100.0,
+                       "time": {"min": 0.1, "points": 12}},
 }
 
 
@@ -176,7 +179,8 @@ def inputs_for(name: str) -> list:
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
                 "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),
                                                                    sweep("ring-cooling")],
-                "gas-column": [sweep("column-drop")]}.get(name, [])
+                "gas-column": [sweep("column-drop")],
+                "rigid-model-suffices": [sweep("rigid-suffices")]}.get(name, [])
     return declared + list(experiments(name))
 
 

@@ -10,7 +10,10 @@
   exp(-mu T_xi) (eq. ``rest-coefficient-function-of-mu``) is r.
 * :func:`collision_rate`: the collision rate per grain of points with given velocities at uniform positions;
 * :func:`states_at`: every grain's state at given times of a run, exact to rounding (the sweeps that follow a gas in
-  time).
+  time);
+* :func:`contacts`, :func:`merge_contacts`, :func:`partner_sides`, :func:`parting`: a run's contacts, the dimers'
+  micro-impacts merged into collisions, each grain's ordered partners, and the first collision where two gases' grain
+  histories differ (sweep ``rigid-suffices``).
 """
 
 from __future__ import annotations
@@ -120,3 +123,66 @@ def states_at(run: GasRun, times: np.ndarray, chunk: int) -> tuple[dict[str, np.
         record(i)
         i += 1
     return out, events
+
+
+def contacts(run: GasRun, max_events: int, chunk: int = 1 << 16) -> tuple[np.ndarray, np.ndarray]:
+    """(time, slot) of every contact event of ``run`` until it stops or has ``max_events`` events (slot s: grains s and
+    s + 1 mod n, :func:`bounce.gas.common.slot_grains`)."""
+    ts, slots = [], []
+    while run.events < max_events and not run.finished:
+        rec, k, _ = run.step(min(chunk, max_events - run.events))
+        ts.append(rec.t[:k].copy())
+        slots.append(rec.pair[:k].astype(np.int64))
+    if not ts:
+        return np.zeros(0), np.zeros(0, dtype=np.int64)
+    return np.concatenate(ts), np.concatenate(slots)
+
+
+def merge_contacts(t: np.ndarray, slot: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """(time, slot) of the collisions made of the micro-impacts (t, slot), in time order: a micro-impact opens a new
+    collision of its slot unless the slot's previous micro-impact came less than ``window`` before it.  A collision's
+    time is its first micro-impact's (when the two grains first touch).
+
+    Two dimers colliding alone make two micro-impacts T_xi(mu) apart (the masses exchange velocities, the springs
+    swing once and the masses meet again: eq. ``rest-coefficient-function-of-mu``'s double impact), so a window above
+    T_xi and well below the free time between collisions counts each such collision once."""
+    order = np.lexsort((t, slot))
+    ts, ss = t[order], slot[order]
+    new = np.ones(ts.size, dtype=bool)
+    new[1:] = (ss[1:] != ss[:-1]) | (ts[1:] - ts[:-1] >= window)
+    keep = np.sort(order[new])
+    return t[keep], slot[keep]
+
+
+def partner_sides(t: np.ndarray, slot: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every grain's collisions in its own order: (side, time, count), side[g, k] = +1 if grain g's k-th collision is
+    with its right neighbour g + 1, -1 with its left neighbour g - 1 (mod n), 0 past its count[g] collisions; time[g, k]
+    its time (inf past the count)."""
+    grain = np.concatenate([slot, (slot + 1) % n])
+    side = np.concatenate([np.ones(slot.size, dtype=np.int8), -np.ones(slot.size, dtype=np.int8)])
+    time = np.concatenate([t, t])
+    order = np.lexsort((time, grain))
+    grain, side, time = grain[order], side[order], time[order]
+    count = np.bincount(grain, minlength=n)
+    k = np.arange(grain.size) - np.repeat(np.cumsum(count) - count, count)
+    sides = np.zeros((n, max(int(count.max(initial=0)), 1)), dtype=np.int8)
+    times = np.full(sides.shape, np.inf)
+    sides[grain, k], times[grain, k] = side, time
+    return sides, times, count
+
+
+def parting(rigid: tuple[np.ndarray, np.ndarray], dimer: tuple[np.ndarray, np.ndarray], n: int) -> tuple[float, int]:
+    """(time, grain) of the first collision of the rigid gas that the dimer gas does not make: the first k-th collision
+    of a grain whose partner (left or right neighbour) differs from the dimer grain's k-th, or that the dimer grain
+    lacks; (inf, -1) when every grain's rigid collisions are the dimer grain's first ones.  ``rigid`` and ``dimer``:
+    the collisions (time, slot) of the two gases, the dimers' recorded past the rigid gas's last."""
+    rs, rt, rc = partner_sides(*rigid, n)
+    ds, _, dc = partner_sides(*dimer, n)
+    width = rs.shape[1]
+    ds = np.pad(ds, ((0, 0), (0, max(width - ds.shape[1], 0))))[:, :width]
+    k = np.arange(width)[None, :]
+    differ = (k < rc[:, None]) & (rs != ds)  # past the dimer's count its side is 0: a missing collision differs
+    first = np.where(differ.any(axis=1), differ.argmax(axis=1), width)
+    t = np.where(first < width, rt[np.arange(n), np.minimum(first, width - 1)], np.inf)
+    g = int(np.argmin(t))
+    return (float(t[g]), g) if math.isfinite(t[g]) else (math.inf, -1)
