@@ -7,10 +7,10 @@ import pytest
 import xarray as xr
 
 from bounce.checks import registry
-from bounce.checks.base import NOT_REPRODUCED, REPRODUCED
+from bounce.checks.base import NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED
 
 G = registry()["rigid-model-suffices"]
-SPEC = {"inputs": ["rigid-suffices"], "sigmas": 3.0}
+SPEC = {"inputs": ["rigid-suffices"], "sigmas": 3.0, "sign_alpha": 1e-3}
 
 
 def sweep_like(power=-1.0, temp_over_collapse=1.1, temp_over_seq=30.0):
@@ -52,6 +52,7 @@ def test_sequence_parting_1_over_n(changes, expected):
 
 @pytest.mark.parametrize("changes, expected", [
     ({}, REPRODUCED),
+    ({"temp_over_collapse": 0.9}, REPRODUCED),  # within the grid step (1.23) by which t_temp is resolved
     ({"temp_over_collapse": 0.5}, NOT_REPRODUCED),  # the temperatures part at half the collapse time
 ])
 def test_temperature_holds_to_collapse(changes, expected):
@@ -64,3 +65,18 @@ def test_temperature_holds_to_collapse(changes, expected):
 ])
 def test_temperature_outlasts_sequence(changes, expected):
     assert verdict("temperature-outlasts-sequence", **changes) == {expected}
+
+
+def test_temperature_outlasts_sequence_is_a_sign_test():
+    """Most states, not every state: one counterexample among 40 keeps the verdict (p ~ 4e-11); with 8 states even
+    8 of 8 cannot reach p <= 1e-3 (2^-8 = 4e-3): not checkable rather than a verdict without power."""
+    ds = sweep_like()
+    t_temp = ds["t_temp"].values.copy()
+    t_temp[1, 0, 0] = 0.5 * ds["t_seq"].values[1, 0, 0]
+    ds["t_temp"] = (ds["t_temp"].dims, t_temp)
+    rows = G.verdicts(G.measure(SPEC, [ds]), SPEC, only="temperature-outlasts-sequence")
+    assert {v.verdict for v in rows} == {REPRODUCED} and "39 of 40" in rows[0].measured
+    few = sweep_like().isel(r=[1], n=[0])
+    few["t_temp"] = xr.where(np.isfinite(few["t_temp"]), few["t_temp"], 30.0 * few["t_seq"])
+    rows = G.verdicts(G.measure(SPEC, [few]), SPEC, only="temperature-outlasts-sequence")
+    assert {v.verdict for v in rows} == {NOT_CHECKABLE}
