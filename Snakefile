@@ -78,4 +78,5 @@ rule all:
         "results/report/validation.html",
         [f"results/methods/{name}.nc" for name in STUDIES],
         SWEEP_FILES,
+        [gas_scene_file(name) for name in GAS_SCENES],
     default_target: True

@@ -33,7 +33,7 @@ import numpy as np
 from .errors import InputError as UsageError
 from .gas.common import KIND_NAMES
 from .gas.io import BYTES_PER_EVENT, partial_path, stream_to_netcdf, to_dataset
-from .gas.model import GasParameters, GasState, RigidParameters, RigidState
+from .gas.model import GasParameters, GasState, RigidParameters, RigidState, random_state
 from .gas.simulate import DEFAULT_CHUNK, run_settings, simulate_gas, simulate_rigid
 from .io import CODECS, check_output_path, write_netcdf
 from .stream import check_memory
@@ -132,29 +132,7 @@ def initial_state(args, params) -> GasState | RigidState:
             raise UsageError(f"--state must be an .npz file with arrays {', '.join(names)} (one entry per grain): "
                              f"{exc}") from None
         return RigidState(*arrays) if rigid else GasState(*arrays)
-    n = params.n
-    for name, value, ok, allowed in (("--speed", args.speed, args.speed >= 0.0, "[0, inf)"),
-                                     ("--gap", args.gap, args.gap > 0.0, "(0, inf)"),
-                                     ("--seed", args.seed, args.seed >= 0, "[0, inf), an integer")):
-        if not (ok and math.isfinite(value)):
-            raise UsageError(f"{name} must be in {allowed} (allowed range), got {value!r}")
-    rng = np.random.default_rng(args.seed)
-    v = rng.normal(0.0, args.speed, n)
-    length = params.size if rigid else 1.0
-    if params.geometry == "ring":
-        free = params.ell - n * length
-        if not free > 0.0:
-            raise UsageError(f"--ell must be > n times the grains' length = {n * length!r} to place them (allowed "
-                             f"range: ({n * length!r}, inf)), got {params.ell!r}")
-        v -= v.mean()
-        gaps = rng.dirichlet(np.ones(n)) * free
-        x = np.concatenate([[0.0], np.cumsum(gaps[:-1] + length)])
-    else:
-        x = args.gap + np.arange(n) * (length + args.gap)
-    if rigid:
-        return RigidState(x, v)
-    zero = np.zeros(n)
-    return GasState(x, v, zero, zero)
+    return random_state(params, args.speed, args.gap, args.seed, prefix="--")
 
 
 def _summary(n_events: int, counts, stop: str, t_end: float, path, message: str) -> str:

@@ -35,3 +35,8 @@ def figure_file(stage: str, name: str, ext: str = "png") -> str:
     """``results/<stage>/fig-<name>.<ext>``: a paper figure (stage ``figures``), a study's, a sweep's or a
     claim group's figure beside its dataset."""
     return f"{RESULTS}/{stage}/fig-{name}.{ext}"
+
+
+def gas_scene_file(name: str) -> str:
+    """The dataset of gas scene ``name`` (rule simulate_gas; config ``gas_scenes``)."""
+    return dataset("data", f"gas/{name}")

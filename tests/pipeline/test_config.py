@@ -160,6 +160,19 @@ def test_scene_below_the_floor_is_refused_by_the_model():
 
 
 @pytest.mark.parametrize("path, value, words", [
+    ("gas_scenes.ring-dimers.ell", 50.0, r"^gas_scenes\.ring-dimers: ell must be > n times the grains' length"),
+    ("gas_scenes.column-dimers.gamma", 0.6, r"gas_scenes\.column-dimers\.gamma"),
+    ("gas_scenes.ring-dimers.initial", {"speed": -1.0}, r"gas_scenes\.ring-dimers\.initial\.speed"),
+    ("gas_scenes.ring-dimers.model", "soft", r"gas_scenes\.ring-dimers\.model"),
+])
+def test_gas_scene_is_refused_naming_it(path, value, words):
+    """A gas scene is built with the gas model's own validation before any job (an ell too short for its grains), and
+    closed by the schema."""
+    with pytest.raises(ConfigError, match=words):
+        _validated(_with(path, value))
+
+
+@pytest.mark.parametrize("path, value, words", [
     ("reduced.least_model.scenes.no-such-scene", {"qoi": {"impact_states": {"tol": 1e-3}}}, "no scene named 'no-such-scene'"),
     ("figures.rest-coeff.scene", "nosuch", "no scene named 'nosuch'"),
     ("methods.work_precision.scene", "nosuch", "no scene in methods.scenes named 'nosuch'"),
@@ -167,6 +180,7 @@ def test_scene_below_the_floor_is_refused_by_the_model():
     ("scenes.alpha-atlas", CONFIG["scenes"]["rigid-fall"], "taken by a derived dataset"),
     ("checks.nonlinear-atlas.inputs", ["no-such-sweep"], "no dataset named 'no-such-sweep'"),
     ("checks.main-theorem.inputs", ["asymptotic-underdamped", "asymptotic-atlass"], "no dataset named 'asymptotic-atlass'"),
+    ("figures.gas-spacetime.gas_scene", "nosuch", "no gas scene named 'nosuch'"),
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):

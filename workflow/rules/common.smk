@@ -2,7 +2,7 @@
 (figures: bounce.figures.FIGURES and bounce.pipeline.catalogue; studies: bounce.studies.registry; checks: bounce.checks) read here,
 so that no name is listed twice."""
 
-from bounce.paths import dataset, figure_file, sticky_dataset
+from bounce.paths import dataset, figure_file, gas_scene_file, sticky_dataset
 from bounce.pipeline.catalogue import figure_table, pipeline_figures
 from bounce.studies import study_inputs, study_slices
 
@@ -26,6 +26,7 @@ def sticky_run_spec(w):
 
 
 SCENES = sorted(config["scenes"])
+GAS_SCENES = sorted(config.get("gas_scenes", {}))
 STICKY = config["sticky"]
 STICKY_CONV = [sticky_file(0.0)] + [sticky_file(e) for e in STICKY["eps_convergence"] if float(e) != 0.0]
 

@@ -18,3 +18,22 @@ rule simulate:
         scene="|".join(re.escape(s) for s in SCENES),
     shell:
         "python -m bounce.pipeline.tasks scene --name {wildcards.scene} --spec {params.spec:q} --out {output} > {log} 2>&1"
+
+
+rule simulate_gas:
+    """Run the gas engines (bounce.gas, beyond the paper) on one gas scene (its config slice only) into netCDF."""
+    output:
+        "results/data/gas/{gas_scene}.nc",
+    params:
+        spec=lambda w: as_json(config["gas_scenes"][w.gas_scene]),
+    resources:
+        mem_mb=2000,
+        runtime=20,
+    log:
+        "results/logs/simulate/gas/{gas_scene}.log",
+    benchmark:
+        "results/timing/simulate/gas/{gas_scene}.tsv"
+    wildcard_constraints:
+        gas_scene="|".join(re.escape(s) for s in GAS_SCENES) or "^$",
+    shell:
+        "python -m bounce.pipeline.tasks gas-scene --name {wildcards.gas_scene} --spec {params.spec:q} --out {output} > {log} 2>&1"

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..paths import sticky_dataset
-from . import asymptotics, contacts, sticky, trajectories
+from . import asymptotics, contacts, gases, sticky, trajectories
 
 
 def _one(fn):
@@ -66,6 +66,10 @@ _POINCARE = ("The dots represent the state of the system immediately after a con
 
 #: figure name (the paper's figure label) -> Figure: the registry, one line per figure
 FIGURES = {
+    "gas-spacetime": Figure(_one(gases.spacetime), lambda c: [f"data/gas/{c['figures']['gas-spacetime']['gas_scene']}"],
+                            lambda c: c["figures"]["gas-spacetime"], _beyond(
+        "World lines of the grains of a gas scene (beyond the paper: the dimer gas of the introduction's motivation; "
+        "McNamara and Young's space-time diagram of clustering).")),
     "rigid-fall": _scene_figure(_one(trajectories.rigid_fall), "rigid-fall", caption=Caption(
         "fig:rigid-fall", "Numerical simulation with initial conditions xi(0) = xi'(0) = psi'(0) = 0, psi(0) = 6, and "
         "gamma = mu = 0.01. The upper curve is y(t), the lower curve is x(t). The solid dots show the instants when "

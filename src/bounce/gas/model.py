@@ -244,3 +244,35 @@ class RigidState:
             raise InputError(f"xdot[0] must be >= 0 when grain 0 starts on the floor (allowed range: [0, inf)), "
                              f"got {self.xdot[0]!r}")
         _check_order(self.x, self.x + params.size, params.geometry, params.wrap, "x")
+
+
+def random_state(params: GasParameters | RigidParameters, speed: float, gap: float, seed: int,
+                 prefix: str = "") -> GasState | RigidState:
+    """A generated start (the command line's and the gas scenes'): velocities normal with standard deviation
+    ``speed`` (``numpy.random.default_rng(seed)``); springs at rest.  On the ring the grains sit at uniformly random
+    places (free lengths Dirichlet-distributed over ell - n times the grains' length) with zero total momentum; in the
+    column, ``gap`` above the floor and between the grains.  ``prefix`` names the options in messages ("--" for the
+    command line)."""
+    for name, value, ok, allowed in (("speed", speed, speed >= 0.0, "[0, inf)"), ("gap", gap, gap > 0.0, "(0, inf)"),
+                                     ("seed", seed, seed >= 0, "[0, inf), an integer")):
+        if not (ok and math.isfinite(value)):
+            raise InputError(f"{prefix}{name} must be in {allowed} (allowed range), got {value!r}")
+    rigid = isinstance(params, RigidParameters)
+    n = params.n
+    rng = np.random.default_rng(seed)
+    v = rng.normal(0.0, speed, n)
+    length = params.size if rigid else 1.0
+    if params.geometry == "ring":
+        free = params.ell - n * length
+        if not free > 0.0:
+            raise InputError(f"{prefix}ell must be > n times the grains' length = {n * length!r} to place them "
+                             f"(allowed range: ({n * length!r}, inf)), got {params.ell!r}")
+        v -= v.mean()
+        gaps = rng.dirichlet(np.ones(n)) * free
+        x = np.concatenate([[0.0], np.cumsum(gaps[:-1] + length)])
+    else:
+        x = gap + np.arange(n) * (length + gap)
+    if rigid:
+        return RigidState(x, v)
+    zero = np.zeros(n)
+    return GasState(x, v, zero, zero)

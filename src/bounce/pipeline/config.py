@@ -141,7 +141,7 @@ def _check_scenes(config: dict) -> None:
     """Build every scene's parameters and initial state with the model's own validation, inside the supported
     domain (:func:`bounce.model.check_supported`)."""
     from ..model import check_supported
-    from ..scenes import scene_initial, scene_parameters
+    from ..scenes import gas_scene_start, scene_initial, scene_parameters
 
     for section, scenes in (("scenes", config.get("scenes", {})),
                             ("methods.scenes", config.get("methods", {}).get("scenes", {}))):
@@ -157,6 +157,11 @@ def _check_scenes(config: dict) -> None:
                 check_supported(params, scene_initial(spec, params).deviations(params))
             except InputError as err:
                 raise ConfigError(f"{section}.{name}: {err}") from None
+    for name, spec in config.get("gas_scenes", {}).items():
+        try:
+            gas_scene_start(spec)
+        except InputError as err:
+            raise ConfigError(f"gas_scenes.{name}: {err}") from None
 
 
 def _check_references(config: dict) -> None:
@@ -169,7 +174,10 @@ def _check_references(config: dict) -> None:
             raise ConfigError(f"{where}: no {what} named {name!r} (known: {', '.join(sorted(pool)) or 'none'})")
 
     for fig, spec in config.get("figures", {}).items():
-        need(f"figures.{fig}.scene", spec["scene"], scenes, "scene")
+        if "scene" in spec:
+            need(f"figures.{fig}.scene", spec["scene"], scenes, "scene")
+        if "gas_scene" in spec:
+            need(f"figures.{fig}.gas_scene", spec["gas_scene"], set(config.get("gas_scenes", {})), "gas scene")
     for scene in config.get("reduced", {}).get("least_model", {}).get("scenes", {}):
         need(f"reduced.least_model.scenes.{scene}", scene, scenes, "scene")
     methods = config.get("methods", {})

@@ -20,6 +20,12 @@ def _scene(args) -> None:
     write_netcdf(scene_dataset(args.spec, name=args.name), args.out[0])
 
 
+def _gas_scene(args) -> None:
+    from ..scenes import gas_scene_dataset
+
+    write_netcdf(gas_scene_dataset(args.spec, name=args.name), args.out[0])
+
+
 def _sticky_inference(args) -> None:
     from ..analysis.sticky import t_c_map
 
@@ -139,6 +145,7 @@ def _thumbnails(args) -> None:
 
 TASKS = {
     "scene": _scene,
+    "gas-scene": _gas_scene,
     "sticky-inference": _sticky_inference,
     "sticky-convergence": _sticky_convergence,
     "figure": _figure,
