@@ -331,11 +331,14 @@ def _outcome(kind: str, case) -> tuple[str, str]:
         return DEFECT, f"{type(exc).__name__}: {' '.join(str(exc).split())[:300]}"
 
 
-def _serve(conn) -> None:
-    """The worker: answer (kind, case) with its outcome until None."""
+def _serve(conn, scratch: str) -> None:
+    """The worker: answer (kind, case) with its outcome until None; its temporary folders go under ``scratch``,
+    which the runner empties when it kills the worker (a killed run cannot remove its own)."""
     import time
 
     import bounce.cli as cli
+
+    tempfile.tempdir = scratch
 
     cli.MAX_SAMPLES = 20_000  # keeps accepted sampling runs small; larger requests take the refusal path
     for kind, case in (("api", (0.01, 0.01, None, "psi", (6.0, 0.0, 0.0, 0.0), 3, math.inf)),
@@ -356,11 +359,12 @@ class Runner:
     def __init__(self, timeout: float):
         self.timeout = timeout
         self._context = multiprocessing.get_context("spawn")
+        self._scratch = tempfile.mkdtemp(prefix="bounce-fuzz-runner-")
         self._start()
 
     def _start(self) -> None:
         self._conn, child = self._context.Pipe()
-        self._worker = self._context.Process(target=_serve, args=(child,), daemon=True)
+        self._worker = self._context.Process(target=_serve, args=(child, self._scratch), daemon=True)
         self._worker.start()
         child.close()
         if not self._conn.poll(600) or self._conn.recv() != "ready":  # imports and the kernels' cache
@@ -370,6 +374,8 @@ class Runner:
         self._worker.kill()
         self._worker.join()
         self._conn.close()
+        shutil.rmtree(self._scratch, ignore_errors=True)  # what the killed case was writing
+        os.makedirs(self._scratch, exist_ok=True)
         self._start()
 
     def run(self, kind: str, case) -> Outcome:
@@ -390,6 +396,8 @@ class Runner:
         self._worker.join(10)
         if self._worker.is_alive():
             self._worker.kill()
+            self._worker.join()
+        shutil.rmtree(self._scratch, ignore_errors=True)
 
 
 def power_law(kind: str, case):

@@ -294,6 +294,7 @@ EDGE_BAD = {
     "speed_huge": (_with(ydot0="1e30"), "initial state"),
     "events_huge": (GOOD + ["--events", "1e19"], "events"),  # was: OverflowError traceback
     "events_memory": (GOOD + ["--events", "1e10", "--dt-sample", "1"], "events"),  # without it: streams
+    "events_disk": (GOOD + ["--events", "1e12"], "events"),  # streamed: 81 TB of records
     "dt_subnormal": (GOOD + ["--dt-sample", "1e-320"], "dt-sample"),  # was: OverflowError traceback
     "dt_dense_no_t_max": (GOOD + ["--dt-sample", "1e-12"], "dt-sample"),
     "repeated_gamma": (GOOD + ["--gamma", "0.02"], "--gamma"),  # was: silently the last value

@@ -172,6 +172,7 @@ def test_cli_streams_by_default_past_one_chunk(tmp_path, capsys, monkeypatch):
     streams (here where its one-shot records would not fit), gives the one-shot run's records, and an interrupted
     one resumes with the same command and --resume; up to one chunk it runs in one call, as before."""
     monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
+    monkeypatch.setattr(stream, "free_disk", lambda path: 10**12)
     args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
             "--xidot0", "0", "--no-progress"]
     assert main([*args, "--events", "3e8", "--t-max", "30", "--out", str(tmp_path / "long.nc")]) == 0
@@ -191,6 +192,7 @@ def test_cli_stream_takes_more_events_than_memory_and_checks_the_chunk(tmp_path,
     """--stream: --events is not bounded by memory (a chunk is), up to MAX_STREAM_EVENTS; a --chunk that does
     not fit is refused up front, with its estimate (the same check, 105 bytes per event of a chunk)."""
     monkeypatch.setattr(stream, "available_memory", lambda: 2 * 2**30)
+    monkeypatch.setattr(stream, "free_disk", lambda path: 10**16)  # 1e11 records would fit (check_disk)
     args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
             "--xidot0", "0", "--stream", "--no-progress"]
     assert main([*args, "--events", "1e11", "--t-max", "50", "--out", str(tmp_path / "long.nc")]) == 0
@@ -389,9 +391,11 @@ def test_resume_of_a_damaged_partial_is_refused(tmp_path, capsys, monkeypatch):
     assert part.read_bytes() == before[: len(before) // 2] and not out.exists()
 
 
-def test_full_disk_removes_the_partial(small_disk, capsys):
+def test_full_disk_removes_the_partial(small_disk, capsys, monkeypatch):
     """Issue 25 item 2: a stream filling a 2 MiB file system says the disk is full and removes the partial
-    file (it said "NetCDF: HDF error" and left the partial file filling the disk)."""
+    file (it said "NetCDF: HDF error" and left the partial file filling the disk).  The disk is made to look free
+    to the up-front check (check_disk), as when another process fills it during the run."""
+    monkeypatch.setattr(stream, "free_disk", lambda path: 10**12)
     code, out, err = _cli([*DROP, "--events", "1e5", "--stream", "--chunk", "10000",
                            "--out", str(small_disk / "run.nc")], capsys)
     assert code == 1 and out == ""
@@ -399,11 +403,15 @@ def test_full_disk_removes_the_partial(small_disk, capsys):
     assert list(small_disk.iterdir()) == []
 
 
-def test_stream_on_a_full_disk(small_disk, capsys):
-    """Issue 25 item 2: with no space left at all it said "Permission denied" (or "NetCDF: HDF error")."""
+def test_stream_on_a_full_disk(small_disk, capsys, monkeypatch):
+    """Issue 25 item 2: with no space left at all it said "Permission denied" (or "NetCDF: HDF error"); the disk
+    looks free to the up-front check, as above, and the up-front check itself refuses it (exit 2)."""
     with open(small_disk / "fill", "wb", buffering=0) as fh, contextlib.suppress(OSError):
         while True:
             fh.write(b"\0" * 4096)
+    code, out, err = _cli([*DROP, "--events", "1000", "--stream", "--out", str(small_disk / "run.nc")], capsys)
+    assert code == 2 and "--events 1000 would write up to" in err and [p.name for p in small_disk.iterdir()] == ["fill"]
+    monkeypatch.setattr(stream, "free_disk", lambda path: 10**12)
     code, out, err = _cli([*DROP, "--events", "1000", "--stream", "--out", str(small_disk / "run.nc")], capsys)
     assert code == 1 and out == ""
     _one_line_error(err, "disk full", "no file was written")
@@ -442,3 +450,19 @@ def test_second_stream_to_the_same_out_is_refused(tmp_path):
     assert "1000000 events" in stdout
     assert read_dataset(out).sizes["event"] == 1_000_000
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]
+
+
+def test_streamed_run_that_could_not_fit_on_the_disk_is_refused_up_front(tmp_path, capsys, monkeypatch):
+    """A streamed run (by default past one chunk) is refused before simulating when its --events could not fit on
+    the disk of --out (81 bytes per event); thinned, only the kept events count.  Found when the default stream let
+    the fuzz's --events 1e10 write 26 GB to /tmp."""
+    monkeypatch.setattr(stream, "free_disk", lambda path: 10**9)
+    args = ["simulate", "--gamma", "0.01", "--mu", "0.01", "--psi0", "6", "--psidot0", "0", "--xi0", "0",
+            "--xidot0", "0", "--no-progress"]
+    code = main([*args, "--events", "1e8", "--out", str(tmp_path / "big.nc")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.startswith("error: --events 100000000 would write up to ~8.1 GB") and "--keep-first" in err
+    assert len(err.strip().splitlines()) == 1 and not list(tmp_path.iterdir())
+    assert main([*args, "--events", "1e8", "--t-max", "30", "--stream", "--keep-first", "100", "--keep-log", "100",
+                 "--out", str(tmp_path / "thin.nc")]) == 0
+    assert "stop: t_max" in capsys.readouterr().out

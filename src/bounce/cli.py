@@ -66,7 +66,7 @@ from .model import GAMMA_MAX, GAMMA_MIN, MU_MAX, InputError, Parameters, State, 
 from .simulate import simulate
 from .springs import SPRING_LAWS, spring_from_spec
 from .springs.base import FLIGHT_MAX
-from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_memory, check_paths,
+from .stream import (BYTES_PER_EVENT_STREAM, DEFAULT_CHUNK, MAX_STREAM_EVENTS, check_disk, check_memory, check_paths,
                      partial_path, progress_enabled, simulate_chunked, stream_to_netcdf)
 from .trajectory import MAX_EVENTS
 
@@ -375,6 +375,7 @@ def _stream_command(args, params, initial, out) -> int:
     if args.dt_sample is not None:
         raise UsageError("--dt-sample needs the whole run in memory; it does not combine with --stream")
     check_memory(args.chunk, BYTES_PER_EVENT_STREAM, "--chunk")
+    check_disk(out, args.events, _keep(args, True))
     try:
         result = stream_to_netcdf(params, initial, out, args.events, args.t_max, args.energy_stop, args.chunk,
                                   _keep(args, True), args.resume, args.progress, args.compression)

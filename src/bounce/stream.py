@@ -26,6 +26,7 @@ import contextlib
 import fcntl
 import math
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -72,6 +73,26 @@ def available_memory() -> int:
     except (ImportError, ValueError, OSError):
         pass
     return int(avail) if math.isfinite(avail) else 1 << 62
+
+
+def free_disk(path: Path) -> int:
+    """Bytes free for this user on the file system of ``path``'s directory."""
+    return shutil.disk_usage(Path(path).resolve().parent).free
+
+
+def check_disk(out: Path, events: int, keep: dict | None = None, bytes_per_event: int = BYTES_PER_EVENT) -> None:
+    """Refuse up front a streamed run whose records could not fit on the disk of ``out``: ``events`` (the run's
+    cap; its other stops may end it sooner, which cannot be known before) or, thinned, the events kept.  A run
+    that then meets a full disk anyway ends with exit 1 and removes its partial file (bounce.cli)."""
+    stored = events if keep is None else min(events, keep["first"] + keep["log_samples"] + 1)
+    need, have = stored * bytes_per_event, free_disk(out)
+    if need > have:
+        most = max(have // bytes_per_event, 0)
+        raise InputError(
+            f"--events {events} would write up to ~{need / 1e9:.3g} GB ({bytes_per_event} bytes per event), "
+            f"{have / 1e9:.3g} GB free where --out goes (allowed range here: [1, {most}]): fewer --events, or thin "
+            "the records with --keep-first/--keep-log"
+        )
 
 
 def check_memory(events: int, bytes_per_event: int = BYTES_PER_EVENT, option: str = "--events",
