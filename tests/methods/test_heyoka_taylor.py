@@ -13,7 +13,8 @@
 * samples of y (continuous output) agree with the exact solver's to 1e-12;
 * bad settings get one line naming the setting.
 * its fastest use (:func:`heyoka_taylor.impacts`, the impact rule in the event callback: what
-  benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12.
+  benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12, in the
+  same number of Taylor steps; its integrator-only cost (:func:`heyoka_taylor.step_cost`) takes the steps asked.
 """
 
 from __future__ import annotations
@@ -189,7 +190,7 @@ def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
     start = Deviations(0.0, tr.xdot[-1], tr.xidot[-1], tr.eta[-1])
     ref = run(params, start, max_events=50)
     assert ref.failure == ""
-    t, xdot, xidot, eta, cpu = HT.impacts(params, start, 50, 10.0 * ref.t[-1])
+    t, xdot, xidot, eta, cpu, steps = HT.impacts(params, start, 50, 10.0 * ref.t[-1])
     assert len(t) == 50 and cpu >= 0.0
     assert rel(t, ref.t).max() < 1e-12
     assert rel(xdot, ref.xdot).max() < 1e-12
@@ -197,3 +198,19 @@ def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
     assert np.abs(eta - ref.extra["eta"]).max() < 1e-12 * np.abs(ref.extra["eta"]).max()
     t_half = HT.impacts(params, start, 50, 0.5 * (ref.t[24] + ref.t[25]))[0]
     assert len(t_half) == 25 and rel(t_half, ref.t[:25]).max() < 1e-12
+    assert steps == ref.extra["steps"] >= 50  # one propagation each (run's non-terminal event cuts no step)
+
+
+@pytest.mark.parametrize("params", [Parameters(GAMMA, MU), HERTZ])
+@pytest.mark.parametrize("floor_check", [False, True])
+def test_step_cost_takes_the_steps_asked_without_the_impact_rule(params, floor_check):
+    """step_cost (heyoka's integrator-only cost per step, bench_power's cost split) takes exactly the steps asked
+    in one propagation from the drop's state, the floor's callback (floor_check) running at most at the one
+    crossing of the floor; the spring exactly at rest length (Hertz: not finite) raises instead of a short count."""
+    drop = State.from_psi_xi(6.0, 0.0, params.xi_eq, 0.0)
+    steps, cpu, calls = HT.step_cost(params, drop, 300, floor_check=floor_check)
+    assert steps == 300 and cpu >= 0.0
+    assert calls <= (2 if floor_check else 0)
+    if params is HERTZ:
+        with pytest.raises(RuntimeError, match="of 300 steps"):
+            HT.step_cost(params, State.from_psi_xi(6.0, 0.0, 0.0, 0.0), 300)

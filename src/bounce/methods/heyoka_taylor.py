@@ -110,11 +110,7 @@ def integrator(law, tol: float, cooldown: float | None, high_accuracy: bool, che
     the list ``dips`` when x < 0 there (missed_impact (b)); for :func:`impacts` an :class:`_ImpactRule` and no
     other event.  Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at
     construction; the copy is given the shared ``dips`` list)."""
-    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
-    gamma, mu, xi_eq = (hy.par[i] for i in range(3))
-    force, factor = law.symbolic(hy, xi_eq + eta)
-    damping = 2.0 * mu * v if isinstance(factor, float) and factor == 1.0 else 2.0 * mu * v * factor
-    xi2 = -force - damping
+    system, x, u = _flight_system(law)
     dips = []
 
     def on_minimum(ta, t, d_sgn):
@@ -125,12 +121,65 @@ def integrator(law, tol: float, cooldown: float | None, high_accuracy: bool, che
     floor = hy.t_event(x, callback=_Flights() if checked else _ImpactRule(), direction=hy.event_direction.negative,
                        **kw)
     minimum = [hy.nt_event(u, on_minimum, direction=hy.event_direction.positive)] if checked else []
-    ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
-                            t_events=[floor], nt_events=minimum, pars=[0.0] * 3, tol=tol,
+    ta = hy.taylor_adaptive(system, [0.0] * 4, t_events=[floor], nt_events=minimum, pars=[0.0] * 3, tol=tol,
                             high_accuracy=high_accuracy)
     callback = ta.t_events[0].callback
     callback.dips = dips  # a function deep-copies to itself: on_minimum appends to this list
     return ta, callback
+
+
+def _flight_system(law):
+    """(system, x, u): heyoka's form of the flight ODE (module docstring) for ``law``, pars (gamma, mu, xi_eq)."""
+    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
+    gamma, mu, xi_eq = (hy.par[i] for i in range(3))
+    force, factor = law.symbolic(hy, xi_eq + eta)
+    damping = 2.0 * mu * v if isinstance(factor, float) and factor == 1.0 else 2.0 * mu * v * factor
+    xi2 = -force - damping
+    return [(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], x, u
+
+
+@functools.cache
+def bare_integrator(law, tol: float, high_accuracy: bool, floor_check: bool):
+    """heyoka's integrator of the same flight ODE as :func:`integrator` (same law, tolerance, Taylor order) with
+    no impact rule, for :func:`step_cost`: no event at all, or (``floor_check``) the floor x = 0 downwards as a
+    non-terminal event whose callback only counts its calls.  Returns ``(ta, calls)``, ``calls`` a one-item list."""
+    system, x, _ = _flight_system(law)
+    calls = [0]
+
+    def count(ta, t, d_sgn):
+        calls[0] += 1
+
+    events = [hy.nt_event(x, count, direction=hy.event_direction.negative)] if floor_check else []
+    ta = hy.taylor_adaptive(system, [0.0] * 4, nt_events=events, pars=[0.0] * 3, tol=tol,
+                            high_accuracy=high_accuracy)
+    return ta, calls  # heyoka deep-copies callbacks, a function to itself: count's closure is this list
+
+
+def step_cost(params, initial, n_steps, setting=None, floor_check=False):
+    """heyoka's integrator-only cost, for speed measurements: ``(steps, cpu, calls)``, ``n_steps`` Taylor steps of
+    the flight ODE of :func:`impacts` (same law, parameters, tolerance and Taylor order: :func:`bare_integrator`)
+    from ``initial`` in ONE ``propagate_until`` call (``max_steps=n_steps``), with no impact rule: the ball falls
+    through the floor and away, so no Python callback runs on its path (with ``floor_check``: the floor event's
+    counting callback, ``calls`` times, at most once or twice, at the first crossing).  ``cpu`` is the process time
+    of that call alone.  What a step costs (the Taylor coefficients to the integrator's order, the step size, the
+    state update; with ``floor_check`` also the event polynomial of x and its root check, which finds none) does
+    not depend on the state, so ``cpu / steps`` is heyoka's cost per step in :func:`impacts` WITHOUT: the
+    isolation and refinement of the root at each impact, truncating the step there, and the Python callback
+    (:class:`_ImpactRule`) with its calls into and out of Python.  Raises when heyoka stops short of
+    ``n_steps`` (a non-finite state: the power law with the spring exactly at rest length)."""
+    cfg = _setting(setting)
+    ta, calls = bare_integrator(params.spring, float(cfg["tol"]), bool(cfg["high_accuracy"]), bool(floor_check))
+    dev = initial.deviations(params)
+    ta.pars[:] = [params.gamma, params.mu, params.xi_eq]
+    ta.time = 0.0
+    ta.state[:] = [dev.x, dev.xdot, dev.xidot, dev.eta]
+    calls[0] = 0
+    start = time.process_time()
+    outcome, _, _, steps, _, _ = ta.propagate_until(1e300, max_steps=int(n_steps))
+    cpu = time.process_time() - start
+    if steps != n_steps or not np.isfinite(ta.state).all():
+        raise RuntimeError(f"heyoka took {steps} of {n_steps} steps ({outcome!r}, state {list(ta.state)!r})")
+    return int(steps), cpu, calls[0]
 
 
 class _ImpactRule:
@@ -248,7 +297,8 @@ def _started(params, initial, setting, checked):
 
 
 def impacts(params, initial, max_events, t_end, setting=None):
-    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu)``.
+    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu,
+    steps)``.
 
     One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
     (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
@@ -256,7 +306,9 @@ def impacts(params, initial, max_events, t_end, setting=None):
     bound between propagations): 1.25x the CPU per Hertz impact (module docstring).  Here nothing is
     checked: a skipped impact shows as fewer than ``max_events`` impacts by
     ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
-    which the caller compares.  ``cpu`` is the process time of the propagation alone.  ``t_end`` should
+    which the caller compares.  ``cpu`` is the process time of the propagation alone, ``steps`` heyoka's
+    Taylor steps in it (the step that ends at an impact counts as one; the propagation ends with the step of
+    the last impact when ``max_events`` are found; :func:`step_cost` prices a step).  ``t_end`` should
     be finite and of the order of the run: heyoka's event detection fails (EDOM in its root finder,
     every event missed) on a step ~1e8 long, which a flight whose x is an exact polynomial (the linear
     spring at rest) takes; :func:`run` propagates by CHUNK_FLIGHTS flight bounds for that reason.
@@ -264,9 +316,9 @@ def impacts(params, initial, max_events, t_end, setting=None):
     ta, rule, _, _ = _started(params, initial, setting, checked=False)
     rule.reset(max_events)
     start = time.process_time()
-    ta.propagate_until(t_end)
+    steps = ta.propagate_until(t_end)[3]
     cpu = time.process_time() - start
-    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu
+    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu, int(steps)
 
 
 def _setting(setting):
