@@ -40,13 +40,25 @@ Measured per scene, in this run:
    ratio xi'/x' and eta = 0, 200 impacts each; the first u where heyoka fails, with its reason,
    and the impact index it corresponds to on the drop, n ~ 1/(alpha u) with alpha of the
    Discussion's map (:func:`bounce.analysis.theory.nonlin_alpha_limit`).  The best setting is the one
-   clean to the smallest u (ties: the faster on the deep scene).
+   clean to the smallest u (ties: the faster on the deep scene);
+5. what heyoka's CPU per impact is made of (issue 22, "honest peer numbers"), per scene where it finds the
+   same impacts, in ``--repeats`` interleaved rounds (medians): bounce over those impacts; heyoka's fastest
+   Python use (:func:`bounce.methods.heyoka_taylor.impacts`: what a Python user gets, the impact rule in a
+   Python callback) with its Taylor steps (steps/impact); heyoka's integrator-only cost per step
+   (:func:`bounce.methods.heyoka_taylor.step_cost`: the same ODE, tolerance and Taylor order, no impact rule,
+   no Python on its path; without events, and with the floor checked every step as a non-terminal event that
+   finds no root), from bounce's state after the scene's first impact; hence the integrator-only cost per
+   impact, steps/impact x cost/step, and bounce's speed-up both ways: against what a Python user gets, and
+   against the integrator alone, a lower bound of what a C++ user with a C++ event callback would pay (it
+   leaves out the root isolation and step truncation at each impact and the callback itself; the floor check
+   adds the per-step event polynomial).  ``--cost-only`` runs only this (``--law hertz linear``: ~20 s).
 
 Run (results printed as a table and written as JSON, default ``results/timing/bench_power.json``)::
 
     python benchmarks/bench_power.py                       # Hertz, 1e7 impacts for the skip check
     python benchmarks/bench_power.py --long 0 --repeats 3  # quick: no long run
     python benchmarks/bench_power.py --windows-only 1000   # only the transient windows of both drops
+    python benchmarks/bench_power.py --cost-only --law hertz linear  # only item 5, both laws (~20 s)
 """
 
 from __future__ import annotations
@@ -89,6 +101,8 @@ DIVERGE_REL = 1e-9
 SKIP_REL = 1e-12
 #: heyoka's most accurate setting tried (item 2): one-step errors ~1e-15 on the drop's flights through xi = 0
 ACCURATE = {"tol": 1e-18, "high_accuracy": True}
+#: Taylor steps per step_cost timing at least (item 5)
+STEP_SAMPLE = 20_000
 
 
 def pin_to_one_core() -> str:
@@ -143,10 +157,48 @@ def heyoka_timed(params, initial, bounce_t, setting=None):
     timing of fewer impacts stops the benchmark.  (Where the trajectories part by more than DIVERGE_REL,
     the transient's sensitivity to heyoka's one-step errors, is reported by the scene rows.)"""
     n = len(bounce_t)
-    t, _, _, _, cpu = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0, setting)
+    t, _, _, _, cpu, _ = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0, setting)
     if len(t) < n:
         raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
     return n, cpu
+
+
+def cost_split(params, initial, bounce_t, repeats) -> dict:
+    """heyoka's CPU per impact split into what the integrator costs and what its Python use adds (module
+    docstring, item 5), with bounce over the same impacts: ``repeats`` rounds, each timing in turn bounce, heyoka's
+    :func:`~bounce.methods.heyoka_taylor.impacts` (what a Python user gets: its CPU and Taylor steps) and
+    :func:`~bounce.methods.heyoka_taylor.step_cost` without events and with the floor checked (as many steps as
+    impacts() took, at least STEP_SAMPLE, from bounce's state after the scene's first impact); medians per quantity, ratios of the medians.  Times in us."""
+    n = len(bounce_t)
+    med = statistics.median
+    load = os.getloadavg()[0]
+    tr = simulate(params, initial, max_events=1)
+    moving = post_impact(tr, 0)  # step_cost's start: the spring moves after an impact (its docstring)
+    for check in (False, True):
+        HT.step_cost(params, moving, 10, floor_check=check)  # compile its integrators once
+    cols = {"bounce": [], "python": [], "steps": [], "bare": [], "floor": [], "cpu_s": 0.0}
+    for _ in range(repeats):
+        _, cpu_b = bounce_timed(params, initial, n)
+        t, _, _, _, cpu_h, steps = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0)
+        if len(t) < n:
+            raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
+        cols["bounce"].append(1e6 * cpu_b / n)
+        cols["python"].append(1e6 * cpu_h / n)
+        cols["steps"].append(steps)
+        cols["cpu_s"] += cpu_b + cpu_h
+        for key, check in (("bare", False), ("floor", True)):
+            k, cpu_s, _ = HT.step_cost(params, moving, max(steps, STEP_SAMPLE), floor_check=check)
+            cols[key].append(1e6 * cpu_s / k)
+            cols["cpu_s"] += cpu_s
+    spi = med(cols["steps"]) / n
+    b, py, bare, floor = (med(cols[k]) for k in ("bounce", "python", "bare", "floor"))
+    return {"impacts": n, "steps_per_impact": spi, "steps": cols["steps"], "us_per_impact_bounce": b,
+            "us_per_impact_heyoka_python": py, "us_per_step_bare": bare, "us_per_step_floor_check": floor,
+            "us_per_impact_integrator_only": spi * bare, "us_per_impact_integrator_floor_check": spi * floor,
+            "python_share": 1.0 - spi * bare / py, "rest_share": 1.0 - spi * floor / py,
+            "ratio_python": py / b, "ratio_integrator_only": spi * bare / b, "ratio_floor_check": spi * floor / b,
+            "samples_us": {k: cols[k] for k in ("bounce", "python", "bare", "floor")},
+            "repeats": repeats, "cpu_s": cols["cpu_s"], "load_1min": [load, os.getloadavg()[0]]}
 
 
 def heyoka_run_timed(params, initial, events):
@@ -206,16 +258,21 @@ def one_step_errors(name, params, initial) -> dict:
 
 def scene_row(name, params, scene, initial, args) -> dict:
     HT.run(params, initial, {}, max_events=10)  # compile heyoka's integrator once (reused after)
+    HT.impacts(params, initial, 10, 1.0)  # ... and impacts()' (step_cost's: cost_split)
     simulate(params, initial, max_events=10)  # numba: loaded from cache, warmed
     first = HT.run(params, initial, {}, max_events=args.heyoka_events)
     row = {"heyoka": {"failure": first.failure, "index": first.failure_index, "reason": first.extra["reason"],
                       "impacts": len(first.t), "cooldown_used": first.extra["cooldown"]}}
     n_same = len(first.t) if first.failure else args.heyoka_events
+    row["same_impacts"] = n_same
+    if n_same > 0:
+        row["cost"] = cost_split(params, initial, simulate(params, initial, max_events=n_same).t, args.repeats)
+    if args.cost_only:
+        return row
     tr = simulate(params, initial, max_events=args.events)
     row["bounce"] = {
         "impacts_per_s": rates(lambda: bounce_timed(params, initial, args.events), args.repeats),
         "stop": tr.stop_reason, "all_impacts": bool((tr.kind == IMPACT).all()), "impacts": len(tr.t)}
-    row["same_impacts"] = n_same
     if n_same > 0:  # same start, same impacts
         bounce_t = simulate(params, initial, max_events=n_same).t
         row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, bounce_t), args.repeats)
@@ -315,6 +372,8 @@ def run_law(name, args) -> dict:
                                        if "paper drop" in drops else [])}
     all_scenes = scenes(name, params)
     rows = {scene: scene_row(name, params, scene, init, args) for scene, init in all_scenes.items()}
+    if args.cost_only:
+        return {"law": {"rho": rho, "a": a, "b": b}, "alpha": alpha, "rows": rows, "long": None, "cooldown": {}}
     drop = all_scenes["drop"]
     windows = drop_windows(params, drop, args.repeats)
     tr = simulate(params, drop, max_events=max(CHECKPOINTS))
@@ -349,11 +408,40 @@ def _r(v):
     return "  n/a  " if v is None else f"{v[0]:.2e} [{v[1]:.2e}, {v[2]:.2e}]"
 
 
+def print_cost(rows: dict) -> None:
+    """The cost split of heyoka's CPU per impact (module docstring, item 5)."""
+    rows = {k: v["cost"] for k, v in rows.items() if "cost" in v}
+    if not rows:
+        return
+    r0 = next(iter(rows.values()))
+    print(f"heyoka's CPU per impact split (item 5; us of process CPU, medians of {r0['repeats']} interleaved rounds "
+          "of bounce, heyoka impacts() and step_cost; 'int.' = steps/impact x us/step: the Taylor steps alone, "
+          "no root isolation at the impact, no step truncation, no callback; '+chk' with the floor's event "
+          "polynomial checked every step (no root found)):")
+    print(f"{'scene':11s} {'impacts':>7s} {'bounce':>7s} {'heyoka Python':>13s} {'steps/imp':>9s} {'us/step':>7s} "
+          f"{'+chk':>6s} {'int.':>6s} {'+chk':>6s} {'Python share':>12s} | {'bounce faster: Python':>21s} "
+          f"{'int.':>6s} {'+chk':>6s} | {'CPU s':>6s} {'load 1-min':>10s}")
+    for scene, c in rows.items():
+        print(f"{scene:11s} {c['impacts']:7d} {c['us_per_impact_bounce']:7.3f} {c['us_per_impact_heyoka_python']:13.3f} "
+              f"{c['steps_per_impact']:9.3f} {c['us_per_step_bare']:7.3f} {c['us_per_step_floor_check']:6.3f} "
+              f"{c['us_per_impact_integrator_only']:6.3f} {c['us_per_impact_integrator_floor_check']:6.3f} "
+              f"{100 * c['python_share']:5.0f} ({100 * c['rest_share']:3.0f}) % | {c['ratio_python']:20.1f}x "
+              f"{c['ratio_integrator_only']:5.2f}x {c['ratio_floor_check']:5.2f}x | {c['cpu_s']:6.2f} "
+              f"{c['load_1min'][0]:4.2f}-{c['load_1min'][1]:4.2f}")
+    print("  'Python share': 1 - int./heyoka Python, the share of what a Python user pays that is not Taylor steps "
+          "(in parentheses: 1 - '+chk'/heyoka Python: the Python callback, the root isolation and step truncation "
+          "at the impact); a C++ user with a C++ callback pays at least 'int.' (+chk), at most 'heyoka Python'")
+
+
 def print_report(res: dict, notes: list) -> None:
     print("\n".join(notes))
     for name, r in res.items():
         print(f"\n== {name}: rho, a, b = {r['law']['rho']:g}, {r['law']['a']:g}, {r['law']['b']:g}; "
               f"alpha = {r['alpha']:.4g} ==")
+        print_cost(r["rows"])
+        if any("impacts_per_s" not in row["bounce"] for row in r["rows"].values() if "bounce" in row) or all(
+                "bounce" not in row for row in r["rows"].values()):
+            continue  # --cost-only
         print(f"{'scene':11s} {'impacts':>7s} {'bounce impacts/s med [min, max]':33s} "
               f"{'heyoka impacts/s med [min, max]':33s} {'ratio':>6s} {'err bounce':>10s} {'err heyoka':>10s}"
               f"  heyoka outcome")
@@ -409,8 +497,13 @@ def main(argv=None):
     ap.add_argument("--long", type=int, default=10_000_000, help="bounce impacts of the skip check (0: none)")
     ap.add_argument("--windows-only", type=int, default=0, metavar="N",
                     help="only the drop windows (both drops) up to impact N, e.g. 1000 (default 0: full run)")
-    ap.add_argument("--json", type=Path, default=ROOT / "results" / "timing" / "bench_power.json")
+    ap.add_argument("--cost-only", action="store_true",
+                    help="only the split of heyoka's cost per impact (item 5) on each scene, ~10 s a law")
+    ap.add_argument("--json", type=Path, default=None,
+                    help="default results/timing/bench_power.json (--cost-only: bench_power_cost.json)")
     args = ap.parse_args(argv)
+    if args.json is None:
+        args.json = ROOT / "results" / "timing" / ("bench_power_cost.json" if args.cost_only else "bench_power.json")
     wall = time.time()
     load = os.getloadavg()
     commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True,
