@@ -164,11 +164,13 @@ def heyoka_timed(params, initial, bounce_t, setting=None):
 
 
 def cost_split(params, initial, bounce_t, repeats) -> dict:
-    """heyoka's CPU per impact split into what the integrator costs and what its Python use adds (module
+    """heyoka's CPU per impact split into its Taylor steps, its event handling and its Python callback (module
     docstring, item 5), with bounce over the same impacts: ``repeats`` rounds, each timing in turn bounce, heyoka's
-    :func:`~bounce.methods.heyoka_taylor.impacts` (what a Python user gets: its CPU and Taylor steps) and
+    :func:`~bounce.methods.heyoka_taylor.impacts` (what a Python user gets: its CPU and Taylor steps),
     :func:`~bounce.methods.heyoka_taylor.step_cost` without events and with the floor checked (as many steps as
-    impacts() took, at least STEP_SAMPLE, from bounce's state after the scene's first impact); medians per quantity, ratios of the medians.  Times in us."""
+    impacts() took, at least STEP_SAMPLE, from bounce's state after the scene's first impact) and
+    :func:`~bounce.methods.heyoka_taylor.event_cost` (the event handling in C++, from the scene's start); medians
+    per quantity, ratios of the medians.  Times in us."""
     n = len(bounce_t)
     med = statistics.median
     load = os.getloadavg()[0]
@@ -176,7 +178,9 @@ def cost_split(params, initial, bounce_t, repeats) -> dict:
     moving = post_impact(tr, 0)  # step_cost's start: the spring moves after an impact (its docstring)
     for check in (False, True):
         HT.step_cost(params, moving, 10, floor_check=check)  # compile its integrators once
-    cols = {"bounce": [], "python": [], "steps": [], "bare": [], "floor": [], "cpu_s": 0.0}
+    HT.event_cost(params, initial, 1)
+    cols = {k: [] for k in ("bounce", "python", "steps", "bare", "floor", "events", "event_steps")}
+    cpu_total = 0.0
     for _ in range(repeats):
         _, cpu_b = bounce_timed(params, initial, n)
         t, _, _, _, cpu_h, steps = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0)
@@ -185,20 +189,28 @@ def cost_split(params, initial, bounce_t, repeats) -> dict:
         cols["bounce"].append(1e6 * cpu_b / n)
         cols["python"].append(1e6 * cpu_h / n)
         cols["steps"].append(steps)
-        cols["cpu_s"] += cpu_b + cpu_h
+        cpu_total += cpu_b + cpu_h
         for key, check in (("bare", False), ("floor", True)):
             k, cpu_s, _ = HT.step_cost(params, moving, max(steps, STEP_SAMPLE), floor_check=check)
             cols[key].append(1e6 * cpu_s / k)
-            cols["cpu_s"] += cpu_s
+            cpu_total += cpu_s
+        ev = HT.event_cost(params, initial, n)
+        cols["events"].append(1e6 * (ev["cpu_events"] - ev["cpu_matched"]) / n)
+        cols["event_steps"].append(ev["steps"])
+        cpu_total += ev["cpu_events"] + ev["cpu_matched"]
     spi = med(cols["steps"]) / n
-    b, py, bare, floor = (med(cols[k]) for k in ("bounce", "python", "bare", "floor"))
-    return {"impacts": n, "steps_per_impact": spi, "steps": cols["steps"], "us_per_impact_bounce": b,
-            "us_per_impact_heyoka_python": py, "us_per_step_bare": bare, "us_per_step_floor_check": floor,
-            "us_per_impact_integrator_only": spi * bare, "us_per_impact_integrator_floor_check": spi * floor,
-            "python_share": 1.0 - spi * bare / py, "rest_share": 1.0 - spi * floor / py,
-            "ratio_python": py / b, "ratio_integrator_only": spi * bare / b, "ratio_floor_check": spi * floor / b,
-            "samples_us": {k: cols[k] for k in ("bounce", "python", "bare", "floor")},
-            "repeats": repeats, "cpu_s": cols["cpu_s"], "load_1min": [load, os.getloadavg()[0]]}
+    b, py, bare, floor, events = (med(cols[k]) for k in ("bounce", "python", "bare", "floor", "events"))
+    cpp = spi * bare + events
+    return {"impacts": n, "steps_per_impact": spi, "steps": cols["steps"],
+            "steps_per_impact_step_loop": med(cols["event_steps"]) / n,
+            "us_per_impact_bounce": b, "us_per_impact_heyoka_python": py,
+            "us_per_step_bare": bare, "us_per_step_floor_check": floor,
+            "us_per_impact_steps_alone": spi * bare, "us_per_impact_events": events,
+            "us_per_impact_cpp_estimate": cpp, "us_per_impact_python_callback": py - cpp,
+            "share_not_steps": 1.0 - spi * bare / py, "share_events": events / py, "share_callback": 1.0 - cpp / py,
+            "ratio_python": py / b, "ratio_cpp_estimate": cpp / b, "ratio_steps_alone": spi * bare / b,
+            "samples_us": {k: cols[k] for k in ("bounce", "python", "bare", "floor", "events")},
+            "repeats": repeats, "cpu_s": cpu_total, "load_1min": [load, os.getloadavg()[0]]}
 
 
 def heyoka_run_timed(params, initial, events):
@@ -409,28 +421,29 @@ def _r(v):
 
 
 def print_cost(rows: dict) -> None:
-    """The cost split of heyoka's CPU per impact (module docstring, item 5)."""
+    """The split of heyoka's CPU per impact (module docstring, item 5)."""
     rows = {k: v["cost"] for k, v in rows.items() if "cost" in v}
     if not rows:
         return
     r0 = next(iter(rows.values()))
-    print(f"heyoka's CPU per impact split (item 5; us of process CPU, medians of {r0['repeats']} interleaved rounds "
-          "of bounce, heyoka impacts() and step_cost; 'int.' = steps/impact x us/step: the Taylor steps alone, "
-          "no root isolation at the impact, no step truncation, no callback; '+chk' with the floor's event "
-          "polynomial checked every step (no root found)):")
-    print(f"{'scene':11s} {'impacts':>7s} {'bounce':>7s} {'heyoka Python':>13s} {'steps/imp':>9s} {'us/step':>7s} "
-          f"{'+chk':>6s} {'int.':>6s} {'+chk':>6s} {'Python share':>12s} | {'bounce faster: Python':>21s} "
-          f"{'int.':>6s} {'+chk':>6s} | {'CPU s':>6s} {'load 1-min':>10s}")
+    print(f"heyoka's CPU per impact split (item 5): us of process CPU, medians of {r0['repeats']} interleaved rounds; "
+          "'steps' = steps/impact x us/step (Taylor steps alone), 'events' = its event handling in C++ (root search "
+          "every step, root isolation and step truncation at the impact, cooldown), 'C++' = steps + events (a C++ "
+          "user with a C++ callback: + a few ns), 'callback' = Python - C++ (the Python callback, its calls in and out)")
+    print(f"{'scene':11s} {'impacts':>7s} {'bounce':>7s} {'Python':>7s} {'steps/imp':>9s} {'us/step':>7s} "
+          f"{'steps':>6s} {'events':>6s} {'C++':>6s} {'callback':>8s} | {'bounce faster: Python':>21s} {'C++':>6s} "
+          f"{'steps':>6s} | {'CPU s':>5s} {'load 1-min':>10s}")
     for scene, c in rows.items():
-        print(f"{scene:11s} {c['impacts']:7d} {c['us_per_impact_bounce']:7.3f} {c['us_per_impact_heyoka_python']:13.3f} "
-              f"{c['steps_per_impact']:9.3f} {c['us_per_step_bare']:7.3f} {c['us_per_step_floor_check']:6.3f} "
-              f"{c['us_per_impact_integrator_only']:6.3f} {c['us_per_impact_integrator_floor_check']:6.3f} "
-              f"{100 * c['python_share']:5.0f} ({100 * c['rest_share']:3.0f}) % | {c['ratio_python']:20.1f}x "
-              f"{c['ratio_integrator_only']:5.2f}x {c['ratio_floor_check']:5.2f}x | {c['cpu_s']:6.2f} "
-              f"{c['load_1min'][0]:4.2f}-{c['load_1min'][1]:4.2f}")
-    print("  'Python share': 1 - int./heyoka Python, the share of what a Python user pays that is not Taylor steps "
-          "(in parentheses: 1 - '+chk'/heyoka Python: the Python callback, the root isolation and step truncation "
-          "at the impact); a C++ user with a C++ callback pays at least 'int.' (+chk), at most 'heyoka Python'")
+        print(f"{scene:11s} {c['impacts']:7d} {c['us_per_impact_bounce']:7.3f} {c['us_per_impact_heyoka_python']:7.3f} "
+              f"{c['steps_per_impact']:9.3f} {c['us_per_step_bare']:7.3f} {c['us_per_impact_steps_alone']:6.3f} "
+              f"{c['us_per_impact_events']:6.3f} {c['us_per_impact_cpp_estimate']:6.3f} "
+              f"{c['us_per_impact_python_callback']:8.3f} | {c['ratio_python']:20.1f}x {c['ratio_cpp_estimate']:5.2f}x "
+              f"{c['ratio_steps_alone']:5.2f}x | {c['cpu_s']:5.2f} {c['load_1min'][0]:4.2f}-{c['load_1min'][1]:4.2f}")
+    print("  shares of the Python user's cost (steps / events / callback): " + "; ".join(
+        f"{scene} {100 * (1 - c['share_not_steps']):.0f} / {100 * c['share_events']:.0f} / "
+        f"{100 * c['share_callback']:.0f} %" for scene, c in rows.items())
+          + "; us/step with the floor's event checked every step (no root): " + ", ".join(
+        f"{scene} {c['us_per_step_floor_check']:.3f}" for scene, c in rows.items()))
 
 
 def print_report(res: dict, notes: list) -> None:

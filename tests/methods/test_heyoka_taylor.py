@@ -14,7 +14,8 @@
 * bad settings get one line naming the setting.
 * its fastest use (:func:`heyoka_taylor.impacts`, the impact rule in the event callback: what
   benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12, in the
-  same number of Taylor steps; its integrator-only cost (:func:`heyoka_taylor.step_cost`) takes the steps asked.
+  same number of Taylor steps, as does the step loop that prices its event handling (:func:`heyoka_taylor.event_cost`);
+  its integrator-only cost (:func:`heyoka_taylor.step_cost`) takes the steps asked.
 """
 
 from __future__ import annotations
@@ -199,6 +200,25 @@ def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
     t_half = HT.impacts(params, start, 50, 0.5 * (ref.t[24] + ref.t[25]))[0]
     assert len(t_half) == 25 and rel(t_half, ref.t[:25]).max() < 1e-12
     assert steps == ref.extra["steps"] >= 50  # one propagation each (run's non-terminal event cuts no step)
+
+
+@pytest.mark.parametrize("params, k0", [(Parameters(GAMMA, MU), 20), (HERTZ, 2000)])
+def test_event_cost_loop_finds_the_impacts_of_the_fastest_use(params, k0):
+    """event_cost's step loop (the terminal event without a callback, the impact rule in Python between steps:
+    bench_power's measure of heyoka's event handling) integrates what impacts() does: the same impact times and
+    steps (to 2 %: its steps are bounded, see event_cost), from a restart on the floor (its priming step counted,
+    its event not an impact; 30 impacts from a state where heyoka follows the exact solver, as in the test above)
+    and from the drop (5 impacts: the transient is chaotic; the linear drop's
+    first flight is an exact polynomial); the matched loop runs the rule as often."""
+    drop = State.from_psi_xi(6.0, 0.0, 0.0 if params is not HERTZ else params.xi_eq, 0.0)
+    tr = simulate(params, drop, max_events=k0)
+    for start, restart in ((Deviations(0.0, tr.xdot[-1], tr.xidot[-1], tr.eta[-1]), 1), (drop, 0)):
+        t, *_, steps = HT.impacts(params, start, 30, 1e4)
+        r = HT.event_cost(params, start, 30)
+        assert r["impacts"] == 30 and abs(r["steps"] - restart - steps) <= 0.02 * steps
+        k = 30 if restart else 5  # the drop's transient is chaotic: heyoka's step sequences part it after a few
+        assert rel(r["t"][:k], t[:k]).max() < 1e-12
+        assert r["rules_matched"] == 30 + restart and r["cpu_events"] >= 0.0 and r["cpu_matched"] >= 0.0
 
 
 @pytest.mark.parametrize("params", [Parameters(GAMMA, MU), HERTZ])
