@@ -44,14 +44,16 @@ Measured per scene, in this run:
 5. what heyoka's CPU per impact is made of (issue 22, "honest peer numbers"), per scene where it finds the
    same impacts, in ``--repeats`` interleaved rounds (medians): bounce over those impacts; heyoka's fastest
    Python use (:func:`bounce.methods.heyoka_taylor.impacts`: what a Python user gets, the impact rule in a
-   Python callback) with its Taylor steps (steps/impact); heyoka's integrator-only cost per step
-   (:func:`bounce.methods.heyoka_taylor.step_cost`: the same ODE, tolerance and Taylor order, no impact rule,
-   no Python on its path; without events, and with the floor checked every step as a non-terminal event that
-   finds no root), from bounce's state after the scene's first impact; hence the integrator-only cost per
-   impact, steps/impact x cost/step, and bounce's speed-up both ways: against what a Python user gets, and
-   against the integrator alone, a lower bound of what a C++ user with a C++ event callback would pay (it
-   leaves out the root isolation and step truncation at each impact and the callback itself; the floor check
-   adds the per-step event polynomial).  ``--cost-only`` runs only this (``--law hertz linear``: ~20 s).
+   Python callback) with its Taylor steps per impact; the cost of a Taylor step alone
+   (:func:`bounce.methods.heyoka_taylor.step_cost`: the same ODE, tolerance and Taylor order, no event, no
+   Python on its path; also with the floor checked every step, finding no root); heyoka's event handling in C++
+   per impact (:func:`bounce.methods.heyoka_taylor.event_cost`: a step() loop with the floor as a terminal event
+   without callback minus a matched loop of bare steps: the root search every step, the root's isolation and the
+   step's truncation at each impact, the cooldown).  Hence heyoka's CPU per impact = steps + events + the Python
+   callback (the rest), and bounce's speed-up three ways: against the Python use, against steps + events (what a
+   C++ user with a C++ event callback would pay, give or take the few ns of that callback and the event loop's
+   0.1 us of Python-side mismatch, see event_cost) and against the Taylor steps alone (a strict lower bound).
+   ``--cost-only`` runs only this (``--law hertz linear``: ~20 s).
 
 Run (results printed as a table and written as JSON, default ``results/timing/bench_power.json``)::
 
