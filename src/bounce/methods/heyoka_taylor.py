@@ -69,20 +69,22 @@ the drop's first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the dr
 replaced, a Python callback at every restart, 1.5x, and 18 us per impact deep when run returned to Python
 after every flight.
 What heyoka's CPU per impact is made of (item 5 of bench_power: ``python benchmarks/bench_power.py --cost-only
---law hertz linear``, commit 18e88fd, one core pinned, the other busy: load 5.1-5.2; medians of 7 interleaved rounds,
-2e4 impacts each; numbers in results/timing/bench_power_cost.json): heyoka takes 1.000 Taylor steps per impact deep
-and 2.79 over the drop's first 2e4 impacts (linear law: 1.000 and 1.04; :func:`impacts` counts them), and a step
-of this ODE costs 0.43 us (linear 0.23) with no event and 0.59 us (0.41) with the floor's event polynomial checked
-every step (:func:`step_cost`: no root found, no Python on the path).  So of the 3.3 us per impact a Python user
-pays deep, 87 % is not Taylor steps (82 % beyond the steps with the per-step check: the Python callback, the root
-isolation and the step's truncation at the impact), 71 % (60 %) on the drop; linear: 92 % (87 %) of 3.0 us deep.
-bounce (0.33 us per impact deep, 1.7 on the drop) is 10x faster than heyoka's Python use deep but only 1.3x
-faster than its Taylor steps alone (1.8x with the floor check), a lower bound of what a C++ user with a C++
-event callback would pay; over the drop's first 2e4 impacts 2.4x against the Python use and 0.70x (0.94x)
-against the steps alone: there heyoka's steps are cheaper than bounce's flights.  (heyoka's Python use took 3.3 us
-per impact deep in this run, 4.8 us (2.1e5/s) in the earlier one quoted first, at a lower load: the 13.9x there
-is 10x here, with bounce at 0.33-0.34 us in both.)  Linear law: 33x and 2.6x (4.5x)
-deep, 16x and 1.4x (2.4x) on the drop.
+--law hertz linear --repeats 7``, commit 84c42b1, one core pinned, the other busy: load 3.1; medians of 7 interleaved
+rounds of 2e4 impacts; numbers in results/timing/bench_power_cost.json; three more runs at load 3.4-5.2 within
+~10 %): heyoka takes 1.000 Taylor steps per impact deep and 2.79 over the drop's first 2e4 impacts (linear law:
+1.000 and 1.04; :func:`impacts` counts them); a step of this ODE costs 0.44 us (linear 0.24) alone
+(:func:`step_cost`; 0.61 us, linear 0.42, with the floor's event checked every step and no root found), and
+heyoka's event handling in C++ costs 1.25 us per impact deep, 1.4 on the drop (linear 1.3 and 1.2;
+:func:`event_cost`: the root search every step, the root's isolation and the step's truncation at the impact,
+the cooldown).  Of the 3.4 us per impact a Python user pays deep (Hertz), 13 % is Taylor steps, 37 % event
+handling and 50 % the Python callback with its calls in and out (1.7 us); on the drop 29 / 34 / 37 % of 4.2 us;
+linear deep 8 / 42 / 50 % of 3.1 us.  bounce (0.35 us per impact deep, 1.7 on the drop; linear 0.09 and 0.18) is
+faster than heyoka by 9.6x as a Python user gets it deep, 4.8x against steps + event handling (what a C++ user with a
+C++ event callback would pay, within the ~0.1 us of :func:`event_cost`'s matching) and 1.25x against the Taylor steps
+alone (a strict lower bound); on the drop's first 2e4 impacts 2.4x, 1.5x and 0.71x (heyoka's steps alone are cheaper
+than bounce's flights there); linear law 34x, 17x, 2.6x deep and 16x, 8.3x, 1.4x on the drop.  (heyoka's Python use
+took 3.4 us per impact deep in this run, 4.8 us (2.1e5/s) in the earlier one quoted first: the 13.9x there is 9.6x
+here, with bounce at 0.34-0.35 us in both.)
 One-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
