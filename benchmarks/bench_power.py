@@ -40,13 +40,27 @@ Measured per scene, in this run:
    ratio xi'/x' and eta = 0, 200 impacts each; the first u where heyoka fails, with its reason,
    and the impact index it corresponds to on the drop, n ~ 1/(alpha u) with alpha of the
    Discussion's map (:func:`bounce.analysis.theory.nonlin_alpha_limit`).  The best setting is the one
-   clean to the smallest u (ties: the faster on the deep scene).
+   clean to the smallest u (ties: the faster on the deep scene);
+5. what heyoka's CPU per impact is made of (issue 22, "honest peer numbers"), per scene where it finds the
+   same impacts, in ``--repeats`` interleaved rounds (medians): bounce over those impacts; heyoka's fastest
+   Python use (:func:`bounce.methods.heyoka_taylor.impacts`: what a Python user gets, the impact rule in a
+   Python callback) with its Taylor steps per impact; the cost of a Taylor step alone
+   (:func:`bounce.methods.heyoka_taylor.step_cost`: the same ODE, tolerance and Taylor order, no event, no
+   Python on its path; also with the floor checked every step, finding no root); heyoka's event handling in C++
+   per impact (:func:`bounce.methods.heyoka_taylor.event_cost`: a step() loop with the floor as a terminal event
+   without callback minus a matched loop of bare steps: the root search every step, the root's isolation and the
+   step's truncation at each impact, the cooldown).  Hence heyoka's CPU per impact = steps + events + the Python
+   callback (the rest), and bounce's speed-up three ways: against the Python use, against steps + events (what a
+   C++ user with a C++ event callback would pay, give or take the few ns of that callback and the event loop's
+   0.1 us of Python-side mismatch, see event_cost) and against the Taylor steps alone (a strict lower bound).
+   ``--cost-only`` runs only this (``--law hertz linear``: ~20 s).
 
 Run (results printed as a table and written as JSON, default ``results/timing/bench_power.json``)::
 
     python benchmarks/bench_power.py                       # Hertz, 1e7 impacts for the skip check
     python benchmarks/bench_power.py --long 0 --repeats 3  # quick: no long run
     python benchmarks/bench_power.py --windows-only 1000   # only the transient windows of both drops
+    python benchmarks/bench_power.py --cost-only --law hertz linear  # only item 5, both laws (~20 s)
 """
 
 from __future__ import annotations
@@ -89,6 +103,8 @@ DIVERGE_REL = 1e-9
 SKIP_REL = 1e-12
 #: heyoka's most accurate setting tried (item 2): one-step errors ~1e-15 on the drop's flights through xi = 0
 ACCURATE = {"tol": 1e-18, "high_accuracy": True}
+#: Taylor steps per step_cost timing at least (item 5)
+STEP_SAMPLE = 20_000
 
 
 def pin_to_one_core() -> str:
@@ -143,10 +159,60 @@ def heyoka_timed(params, initial, bounce_t, setting=None):
     timing of fewer impacts stops the benchmark.  (Where the trajectories part by more than DIVERGE_REL,
     the transient's sensitivity to heyoka's one-step errors, is reported by the scene rows.)"""
     n = len(bounce_t)
-    t, _, _, _, cpu = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0, setting)
+    t, _, _, _, cpu, _ = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0, setting)
     if len(t) < n:
         raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
     return n, cpu
+
+
+def cost_split(params, initial, bounce_t, repeats) -> dict:
+    """heyoka's CPU per impact split into its Taylor steps, its event handling and its Python callback (module
+    docstring, item 5), with bounce over the same impacts: ``repeats`` rounds, each timing in turn bounce, heyoka's
+    :func:`~bounce.methods.heyoka_taylor.impacts` (what a Python user gets: its CPU and Taylor steps),
+    :func:`~bounce.methods.heyoka_taylor.step_cost` without events and with the floor checked (as many steps as
+    impacts() took, at least STEP_SAMPLE, from bounce's state after the scene's first impact) and
+    :func:`~bounce.methods.heyoka_taylor.event_cost` (the event handling in C++, from the scene's start); medians
+    per quantity, ratios of the medians.  Times in us."""
+    n = len(bounce_t)
+    med = statistics.median
+    load = os.getloadavg()[0]
+    tr = simulate(params, initial, max_events=1)
+    moving = post_impact(tr, 0)  # step_cost's start: the spring moves after an impact (its docstring)
+    for check in (False, True):
+        HT.step_cost(params, moving, 10, floor_check=check)  # compile its integrators once
+    HT.event_cost(params, initial, 1)
+    cols = {k: [] for k in ("bounce", "python", "steps", "bare", "floor", "events", "event_steps")}
+    cpu_total = 0.0
+    for _ in range(repeats):
+        _, cpu_b = bounce_timed(params, initial, n)
+        t, _, _, _, cpu_h, steps = HT.impacts(params, initial, n, 1.5 * bounce_t[-1] + 1.0)
+        if len(t) < n:
+            raise SystemExit(f"heyoka's timed run found {len(t)} of {n} impacts: an impact was skipped")
+        cols["bounce"].append(1e6 * cpu_b / n)
+        cols["python"].append(1e6 * cpu_h / n)
+        cols["steps"].append(steps)
+        cpu_total += cpu_b + cpu_h
+        for key, check in (("bare", False), ("floor", True)):
+            k, cpu_s, _ = HT.step_cost(params, moving, max(steps, STEP_SAMPLE), floor_check=check)
+            cols[key].append(1e6 * cpu_s / k)
+            cpu_total += cpu_s
+        ev = HT.event_cost(params, initial, n)
+        cols["events"].append(1e6 * (ev["cpu_events"] - ev["cpu_matched"]) / n)
+        cols["event_steps"].append(ev["steps"])
+        cpu_total += ev["cpu_events"] + ev["cpu_matched"]
+    spi = med(cols["steps"]) / n
+    b, py, bare, floor, events = (med(cols[k]) for k in ("bounce", "python", "bare", "floor", "events"))
+    cpp = spi * bare + events
+    return {"impacts": n, "steps_per_impact": spi, "steps": cols["steps"],
+            "steps_per_impact_step_loop": med(cols["event_steps"]) / n,
+            "us_per_impact_bounce": b, "us_per_impact_heyoka_python": py,
+            "us_per_step_bare": bare, "us_per_step_floor_check": floor,
+            "us_per_impact_steps_alone": spi * bare, "us_per_impact_events": events,
+            "us_per_impact_cpp_estimate": cpp, "us_per_impact_python_callback": py - cpp,
+            "share_not_steps": 1.0 - spi * bare / py, "share_events": events / py, "share_callback": 1.0 - cpp / py,
+            "ratio_python": py / b, "ratio_cpp_estimate": cpp / b, "ratio_steps_alone": spi * bare / b,
+            "samples_us": {k: cols[k] for k in ("bounce", "python", "bare", "floor", "events")},
+            "repeats": repeats, "cpu_s": cpu_total, "load_1min": [load, os.getloadavg()[0]]}
 
 
 def heyoka_run_timed(params, initial, events):
@@ -206,16 +272,21 @@ def one_step_errors(name, params, initial) -> dict:
 
 def scene_row(name, params, scene, initial, args) -> dict:
     HT.run(params, initial, {}, max_events=10)  # compile heyoka's integrator once (reused after)
+    HT.impacts(params, initial, 10, 1.0)  # ... and impacts()' (step_cost's: cost_split)
     simulate(params, initial, max_events=10)  # numba: loaded from cache, warmed
     first = HT.run(params, initial, {}, max_events=args.heyoka_events)
     row = {"heyoka": {"failure": first.failure, "index": first.failure_index, "reason": first.extra["reason"],
                       "impacts": len(first.t), "cooldown_used": first.extra["cooldown"]}}
     n_same = len(first.t) if first.failure else args.heyoka_events
+    row["same_impacts"] = n_same
+    if n_same > 0:
+        row["cost"] = cost_split(params, initial, simulate(params, initial, max_events=n_same).t, args.repeats)
+    if args.cost_only:
+        return row
     tr = simulate(params, initial, max_events=args.events)
     row["bounce"] = {
         "impacts_per_s": rates(lambda: bounce_timed(params, initial, args.events), args.repeats),
         "stop": tr.stop_reason, "all_impacts": bool((tr.kind == IMPACT).all()), "impacts": len(tr.t)}
-    row["same_impacts"] = n_same
     if n_same > 0:  # same start, same impacts
         bounce_t = simulate(params, initial, max_events=n_same).t
         row["heyoka"]["impacts_per_s"] = rates(lambda: heyoka_timed(params, initial, bounce_t), args.repeats)
@@ -315,6 +386,8 @@ def run_law(name, args) -> dict:
                                        if "paper drop" in drops else [])}
     all_scenes = scenes(name, params)
     rows = {scene: scene_row(name, params, scene, init, args) for scene, init in all_scenes.items()}
+    if args.cost_only:
+        return {"law": {"rho": rho, "a": a, "b": b}, "alpha": alpha, "rows": rows, "long": None, "cooldown": {}}
     drop = all_scenes["drop"]
     windows = drop_windows(params, drop, args.repeats)
     tr = simulate(params, drop, max_events=max(CHECKPOINTS))
@@ -349,11 +422,41 @@ def _r(v):
     return "  n/a  " if v is None else f"{v[0]:.2e} [{v[1]:.2e}, {v[2]:.2e}]"
 
 
+def print_cost(rows: dict) -> None:
+    """The split of heyoka's CPU per impact (module docstring, item 5)."""
+    rows = {k: v["cost"] for k, v in rows.items() if "cost" in v}
+    if not rows:
+        return
+    r0 = next(iter(rows.values()))
+    print(f"heyoka's CPU per impact split (item 5): us of process CPU, medians of {r0['repeats']} interleaved rounds; "
+          "'steps' = steps/impact x us/step (Taylor steps alone), 'events' = its event handling in C++ (root search "
+          "every step, root isolation and step truncation at the impact, cooldown), 'C++' = steps + events (a C++ "
+          "user with a C++ callback: + a few ns), 'callback' = Python - C++ (the Python callback, its calls in and out)")
+    print(f"{'scene':11s} {'impacts':>7s} {'bounce':>7s} {'Python':>7s} {'steps/imp':>9s} {'us/step':>7s} "
+          f"{'steps':>6s} {'events':>6s} {'C++':>6s} {'callback':>8s} | {'bounce faster: Python':>21s} {'C++':>6s} "
+          f"{'steps':>6s} | {'CPU s':>5s} {'load 1-min':>10s}")
+    for scene, c in rows.items():
+        print(f"{scene:11s} {c['impacts']:7d} {c['us_per_impact_bounce']:7.3f} {c['us_per_impact_heyoka_python']:7.3f} "
+              f"{c['steps_per_impact']:9.3f} {c['us_per_step_bare']:7.3f} {c['us_per_impact_steps_alone']:6.3f} "
+              f"{c['us_per_impact_events']:6.3f} {c['us_per_impact_cpp_estimate']:6.3f} "
+              f"{c['us_per_impact_python_callback']:8.3f} | {c['ratio_python']:20.1f}x {c['ratio_cpp_estimate']:5.2f}x "
+              f"{c['ratio_steps_alone']:5.2f}x | {c['cpu_s']:5.2f} {c['load_1min'][0]:4.2f}-{c['load_1min'][1]:4.2f}")
+    print("  shares of the Python user's cost (steps / events / callback): " + "; ".join(
+        f"{scene} {100 * (1 - c['share_not_steps']):.0f} / {100 * c['share_events']:.0f} / "
+        f"{100 * c['share_callback']:.0f} %" for scene, c in rows.items())
+          + "; us/step with the floor's event checked every step (no root): " + ", ".join(
+        f"{scene} {c['us_per_step_floor_check']:.3f}" for scene, c in rows.items()))
+
+
 def print_report(res: dict, notes: list) -> None:
     print("\n".join(notes))
     for name, r in res.items():
         print(f"\n== {name}: rho, a, b = {r['law']['rho']:g}, {r['law']['a']:g}, {r['law']['b']:g}; "
               f"alpha = {r['alpha']:.4g} ==")
+        print_cost(r["rows"])
+        if any("impacts_per_s" not in row["bounce"] for row in r["rows"].values() if "bounce" in row) or all(
+                "bounce" not in row for row in r["rows"].values()):
+            continue  # --cost-only
         print(f"{'scene':11s} {'impacts':>7s} {'bounce impacts/s med [min, max]':33s} "
               f"{'heyoka impacts/s med [min, max]':33s} {'ratio':>6s} {'err bounce':>10s} {'err heyoka':>10s}"
               f"  heyoka outcome")
@@ -409,8 +512,13 @@ def main(argv=None):
     ap.add_argument("--long", type=int, default=10_000_000, help="bounce impacts of the skip check (0: none)")
     ap.add_argument("--windows-only", type=int, default=0, metavar="N",
                     help="only the drop windows (both drops) up to impact N, e.g. 1000 (default 0: full run)")
-    ap.add_argument("--json", type=Path, default=ROOT / "results" / "timing" / "bench_power.json")
+    ap.add_argument("--cost-only", action="store_true",
+                    help="only the split of heyoka's cost per impact (item 5) on each scene, ~10 s a law")
+    ap.add_argument("--json", type=Path, default=None,
+                    help="default results/timing/bench_power.json (--cost-only: bench_power_cost.json)")
     args = ap.parse_args(argv)
+    if args.json is None:
+        args.json = ROOT / "results" / "timing" / ("bench_power_cost.json" if args.cost_only else "bench_power.json")
     wall = time.time()
     load = os.getloadavg()
     commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True,

@@ -13,7 +13,9 @@
 * samples of y (continuous output) agree with the exact solver's to 1e-12;
 * bad settings get one line naming the setting.
 * its fastest use (:func:`heyoka_taylor.impacts`, the impact rule in the event callback: what
-  benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12.
+  benchmarks/bench_power.py times) finds the same impacts as :func:`heyoka_taylor.run` to 1e-12, in the
+  same number of Taylor steps, as does the step loop that prices its event handling (:func:`heyoka_taylor.event_cost`);
+  its integrator-only cost (:func:`heyoka_taylor.step_cost`) takes the steps asked.
 """
 
 from __future__ import annotations
@@ -189,7 +191,7 @@ def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
     start = Deviations(0.0, tr.xdot[-1], tr.xidot[-1], tr.eta[-1])
     ref = run(params, start, max_events=50)
     assert ref.failure == ""
-    t, xdot, xidot, eta, cpu = HT.impacts(params, start, 50, 10.0 * ref.t[-1])
+    t, xdot, xidot, eta, cpu, steps = HT.impacts(params, start, 50, 10.0 * ref.t[-1])
     assert len(t) == 50 and cpu >= 0.0
     assert rel(t, ref.t).max() < 1e-12
     assert rel(xdot, ref.xdot).max() < 1e-12
@@ -197,3 +199,38 @@ def test_fastest_use_finds_the_same_impacts_as_run(params, k0):
     assert np.abs(eta - ref.extra["eta"]).max() < 1e-12 * np.abs(ref.extra["eta"]).max()
     t_half = HT.impacts(params, start, 50, 0.5 * (ref.t[24] + ref.t[25]))[0]
     assert len(t_half) == 25 and rel(t_half, ref.t[:25]).max() < 1e-12
+    assert steps == ref.extra["steps"] >= 50  # one propagation each (run's non-terminal event cuts no step)
+
+
+@pytest.mark.parametrize("params, k0", [(Parameters(GAMMA, MU), 20), (HERTZ, 2000)])
+def test_event_cost_loop_finds_the_impacts_of_the_fastest_use(params, k0):
+    """event_cost's step loop (the terminal event without a callback, the impact rule in Python between steps:
+    bench_power's measure of heyoka's event handling) integrates what impacts() does: the same impact times and
+    steps (to 2 %: its steps are bounded, see event_cost), from a restart on the floor (its priming step counted,
+    its event not an impact; 30 impacts from a state where heyoka follows the exact solver, as in the test above)
+    and from the drop (5 impacts: the transient is chaotic; the linear drop's
+    first flight is an exact polynomial); the matched loop runs the rule as often."""
+    drop = State.from_psi_xi(6.0, 0.0, 0.0 if params is not HERTZ else params.xi_eq, 0.0)
+    tr = simulate(params, drop, max_events=k0)
+    for start, restart in ((Deviations(0.0, tr.xdot[-1], tr.xidot[-1], tr.eta[-1]), 1), (drop, 0)):
+        t, *_, steps = HT.impacts(params, start, 30, 1e4)
+        r = HT.event_cost(params, start, 30)
+        assert r["impacts"] == 30 and abs(r["steps"] - restart - steps) <= 0.02 * steps
+        k = 30 if restart else 5  # the drop's transient is chaotic: heyoka's step sequences part it after a few
+        assert rel(r["t"][:k], t[:k]).max() < 1e-12
+        assert r["rules_matched"] == 30 + restart and r["cpu_events"] >= 0.0 and r["cpu_matched"] >= 0.0
+
+
+@pytest.mark.parametrize("params", [Parameters(GAMMA, MU), HERTZ])
+@pytest.mark.parametrize("floor_check", [False, True])
+def test_step_cost_takes_the_steps_asked_without_the_impact_rule(params, floor_check):
+    """step_cost (heyoka's integrator-only cost per step, bench_power's cost split) takes exactly the steps asked
+    in one propagation from the drop's state, the floor's callback (floor_check) running at most at the one
+    crossing of the floor; the spring exactly at rest length (Hertz: not finite) raises instead of a short count."""
+    drop = State.from_psi_xi(6.0, 0.0, params.xi_eq, 0.0)
+    steps, cpu, calls = HT.step_cost(params, drop, 300, floor_check=floor_check)
+    assert steps == 300 and cpu >= 0.0
+    assert calls <= (2 if floor_check else 0)
+    if params is HERTZ:
+        with pytest.raises(RuntimeError, match="of 300 steps"):
+            HT.step_cost(params, State.from_psi_xi(6.0, 0.0, 0.0, 0.0), 300)

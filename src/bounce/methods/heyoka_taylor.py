@@ -27,6 +27,8 @@ Failure detection (from the integrator's own output):
     xi'^2/2 + V(xi), which does not increase in flight (eq. ``nonlin-energy``; X_m: the law's
     :meth:`bounce.springs.base.SpringLaw.amplitude`),
     so x < 0 after that time: checked at the end of every propagation (each runs CHUNK_FLIGHTS = 64
+#: step_cost restarts from its state every RESTART_STEPS steps (its docstring)
+RESTART_STEPS = 1000
     flight bounds ahead), a flight still under way past it has stepped over an impact (in
     practice: one that fell inside the event's cooldown); (b) x has a minimum below the floor inside a
     flight: a non-terminal event on x' = u = 0 with direction positive (an interior minimum of x) whose
@@ -65,8 +67,25 @@ heyoka: both take Taylor steps of similar cost, bounce about half as many; over 
 the drop's first 2e4 impacts (5.9 against 4.7 us deep, 7.3 against 5.9 on the drop: interleaved medians of
 11, load 1.9; the benchmark: 1.7e5 against 2.1e5 impacts/s deep); with the event on x = 0 upwards that (b)
 replaced, a Python callback at every restart, 1.5x, and 18 us per impact deep when run returned to Python
-after every flight;
-one-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
+after every flight.
+What heyoka's CPU per impact is made of (item 5 of bench_power: ``python benchmarks/bench_power.py --cost-only
+--law hertz linear --repeats 7``, commit 84c42b1, one core pinned, the other busy: load 3.1; medians of 7 interleaved
+rounds of 2e4 impacts; numbers in results/timing/bench_power_cost.json; three more runs at load 3.4-5.2 within
+~10 %): heyoka takes 1.000 Taylor steps per impact deep and 2.79 over the drop's first 2e4 impacts (linear law:
+1.000 and 1.04; :func:`impacts` counts them); a step of this ODE costs 0.44 us (linear 0.24) alone
+(:func:`step_cost`; 0.61 us, linear 0.42, with the floor's event checked every step and no root found), and
+heyoka's event handling in C++ costs 1.25 us per impact deep, 1.4 on the drop (linear 1.3 and 1.2;
+:func:`event_cost`: the root search every step, the root's isolation and the step's truncation at the impact,
+the cooldown).  Of the 3.4 us per impact a Python user pays deep (Hertz), 13 % is Taylor steps, 37 % event
+handling and 50 % the Python callback with its calls in and out (1.7 us); on the drop 29 / 34 / 37 % of 4.2 us;
+linear deep 8 / 42 / 50 % of 3.1 us.  bounce (0.35 us per impact deep, 1.7 on the drop; linear 0.09 and 0.18) is
+faster than heyoka by 9.6x as a Python user gets it deep, 4.8x against steps + event handling (what a C++ user with a
+C++ event callback would pay, within the ~0.1 us of :func:`event_cost`'s matching) and 1.25x against the Taylor steps
+alone (a strict lower bound); on the drop's first 2e4 impacts 2.4x, 1.5x and 0.71x (heyoka's steps alone are cheaper
+than bounce's flights there); linear law 34x, 17x, 2.6x deep and 16x, 8.3x, 1.4x on the drop.  (heyoka's Python use
+took 3.4 us per impact deep in this run, 4.8 us (2.1e5/s) in the earlier one quoted first: the 13.9x there is 9.6x
+here, with bounce at 0.34-0.35 us in both.)
+One-step errors against the mpmath reference ~4e-16 deep, up to 3e-13 on flights that pass xi = 0
 (bounce: 1e-14).  The paper's drop (xi(0) = 0) stalls at impact 0 (``err_nf_state``, above).  With its
 automatic cooldown heyoka follows bounce's exact trajectory from the states after 1e4 ... 1e7 impacts
 without a skip and first skips an impact at x' = 3e-9 after an impact: its cooldown, measured 10 eps/x' =
@@ -98,6 +117,8 @@ EVENT_STOP = -1  # heyoka's outcome for "stopped by terminal event 0" (stopping 
 #: a propagation of run() ends 64 flight bounds ahead: the flight bound is checked there, and no heyoka step
 #: is longer (its event detection fails on steps ~1e8 long, :func:`impacts`)
 CHUNK_FLIGHTS = 64
+#: step_cost restarts from its state every RESTART_STEPS steps (its docstring)
+RESTART_STEPS = 1000
 
 
 @functools.cache
@@ -110,11 +131,7 @@ def integrator(law, tol: float, cooldown: float | None, high_accuracy: bool, che
     the list ``dips`` when x < 0 there (missed_impact (b)); for :func:`impacts` an :class:`_ImpactRule` and no
     other event.  Returns ``(ta, callback)``, the callback heyoka calls (it deep-copies callbacks at
     construction; the copy is given the shared ``dips`` list)."""
-    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
-    gamma, mu, xi_eq = (hy.par[i] for i in range(3))
-    force, factor = law.symbolic(hy, xi_eq + eta)
-    damping = 2.0 * mu * v if isinstance(factor, float) and factor == 1.0 else 2.0 * mu * v * factor
-    xi2 = -force - damping
+    system, x, u = _flight_system(law)
     dips = []
 
     def on_minimum(ta, t, d_sgn):
@@ -125,12 +142,73 @@ def integrator(law, tol: float, cooldown: float | None, high_accuracy: bool, che
     floor = hy.t_event(x, callback=_Flights() if checked else _ImpactRule(), direction=hy.event_direction.negative,
                        **kw)
     minimum = [hy.nt_event(u, on_minimum, direction=hy.event_direction.positive)] if checked else []
-    ta = hy.taylor_adaptive([(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], [0.0] * 4,
-                            t_events=[floor], nt_events=minimum, pars=[0.0] * 3, tol=tol,
+    ta = hy.taylor_adaptive(system, [0.0] * 4, t_events=[floor], nt_events=minimum, pars=[0.0] * 3, tol=tol,
                             high_accuracy=high_accuracy)
     callback = ta.t_events[0].callback
     callback.dips = dips  # a function deep-copies to itself: on_minimum appends to this list
     return ta, callback
+
+
+def _flight_system(law):
+    """(system, x, u): heyoka's form of the flight ODE (module docstring) for ``law``, pars (gamma, mu, xi_eq)."""
+    x, u, v, eta = hy.make_vars("x", "u", "v", "eta")
+    gamma, mu, xi_eq = (hy.par[i] for i in range(3))
+    force, factor = law.symbolic(hy, xi_eq + eta)
+    damping = 2.0 * mu * v if isinstance(factor, float) and factor == 1.0 else 2.0 * mu * v * factor
+    xi2 = -force - damping
+    return [(x, u), (u, -gamma - xi2), (v, xi2), (eta, v)], x, u
+
+
+@functools.cache
+def bare_integrator(law, tol: float, high_accuracy: bool, floor_check: bool):
+    """heyoka's integrator of the same flight ODE as :func:`integrator` (same law, tolerance, Taylor order) with
+    no impact rule, for :func:`step_cost`: no event at all, or (``floor_check``) the floor x = 0 downwards as a
+    non-terminal event whose callback only counts its calls.  Returns ``(ta, calls)``, ``calls`` a one-item list."""
+    system, x, _ = _flight_system(law)
+    calls = [0]
+
+    def count(ta, t, d_sgn):
+        calls[0] += 1
+
+    events = [hy.nt_event(x, count, direction=hy.event_direction.negative)] if floor_check else []
+    ta = hy.taylor_adaptive(system, [0.0] * 4, nt_events=events, pars=[0.0] * 3, tol=tol,
+                            high_accuracy=high_accuracy)
+    return ta, calls  # heyoka deep-copies callbacks, a function to itself: count's closure is this list
+
+
+def step_cost(params, initial, n_steps, setting=None, floor_check=False):
+    """heyoka's integrator-only cost, for speed measurements: ``(steps, cpu, calls)``, ``n_steps`` Taylor steps of
+    the flight ODE of :func:`impacts` (same law, parameters, tolerance and Taylor order: :func:`bare_integrator`)
+    from ``initial`` with no impact rule, in ``propagate_until`` calls of RESTART_STEPS steps (``max_steps``), each
+    from ``initial`` again: the ball falls through the floor and away, so no Python callback runs on the path
+    (with ``floor_check``: the floor event's counting callback, ``calls`` times, at most once or twice per call, at
+    the first crossing).  ``cpu`` is the process time of those calls alone (the restarts: under 1 % of it).  The
+    restarts keep the flight near its start, where the spring still moves: a spring at rest in flight (the
+    linear law at xi = 0, xi' = 0; the spring relaxes to that over a long flight) makes x an exact polynomial, and
+    heyoka then takes steps as long as the span (~1e300 here: x overflows).  Start from a state whose spring
+    moves, e.g. a post-impact one (xi' jumps by x' at every impact).  What a step costs (the Taylor coefficients to the integrator's order, the step size, the
+    state update; with ``floor_check`` also the event polynomial of x and its root check, which finds none) does
+    not depend on the state, so ``cpu / steps`` is heyoka's cost per step in :func:`impacts` WITHOUT: the
+    isolation and refinement of the root at each impact, truncating the step there, and the Python callback
+    (:class:`_ImpactRule`) with its calls into and out of Python.  Raises when heyoka stops short of
+    ``n_steps`` (a non-finite state: the power law with the spring exactly at rest length)."""
+    cfg = _setting(setting)
+    ta, calls = bare_integrator(params.spring, float(cfg["tol"]), bool(cfg["high_accuracy"]), bool(floor_check))
+    dev = initial.deviations(params)
+    ta.pars[:] = [params.gamma, params.mu, params.xi_eq]
+    calls[0] = 0
+    done, cpu = 0, 0.0
+    while done < n_steps:
+        ta.time = 0.0
+        ta.state[:] = [dev.x, dev.xdot, dev.xidot, dev.eta]
+        m = min(RESTART_STEPS, int(n_steps) - done)
+        start = time.process_time()
+        outcome, _, _, steps, _, _ = ta.propagate_until(1e300, max_steps=m)
+        cpu += time.process_time() - start
+        if steps != m or not np.isfinite(ta.state).all():
+            raise RuntimeError(f"heyoka took {done + steps} of {n_steps} steps ({outcome!r}, state {list(ta.state)!r})")
+        done += m
+    return done, cpu, calls[0]
 
 
 class _ImpactRule:
@@ -230,6 +308,99 @@ class _Flights(_ImpactRule):
         return True
 
 
+@functools.cache
+def event_integrator(law, tol: float, cooldown: float | None, high_accuracy: bool):
+    """heyoka's integrator of :func:`integrator` with the floor x = 0 downwards as a terminal event WITHOUT a
+    callback (for :func:`event_cost`): each ``step()`` that reaches the floor ends there and returns
+    EVENT_STOP, with heyoka's event bookkeeping (cooldown) as in :func:`impacts`."""
+    system, x, _ = _flight_system(law)
+    kw = {} if cooldown is None else {"cooldown": float(cooldown)}
+    floor = hy.t_event(x, direction=hy.event_direction.negative, **kw)
+    return hy.taylor_adaptive(system, [0.0] * 4, t_events=[floor], pars=[0.0] * 3, tol=tol,
+                              high_accuracy=high_accuracy)
+
+
+def event_cost(params, initial, n_impacts, setting=None):
+    """What heyoka's event handling costs without a Python callback, for speed measurements: a dict with
+    ``impacts``, ``steps``, ``t`` (the impact times), ``cpu_events`` and ``cpu_matched`` (process seconds).
+
+    Two Python loops of ``ta.step()`` calls with the same Python work per call: (1) :func:`event_integrator` from
+    ``initial`` (a restart on the floor as in :func:`_start`: from the pre-impact state, the event at t = 0 not
+    counted), each step at most CHUNK_FLIGHTS flight bounds of the start long (as :func:`run`'s propagations: a
+    flight whose x is an exact polynomial, the linear spring at rest, is otherwise one step of unbounded length),
+    applying the impact rule to ``ta.state`` in the loop at every step that ends on the floor, until
+    ``n_impacts`` impacts: the trajectory of :func:`impacts`, with the rule in Python between heyoka calls instead
+    of in a callback; (2) as many steps (same bound) of :func:`bare_integrator` (no events; restarts every RESTART_STEPS steps
+    from ``initial``, outside the timing, as in :func:`step_cost`), running the same rule on a scratch array and
+    recording a time as often.  ``cpu_events - cpu_matched`` is then heyoka's event handling in C++ alone: the
+    event polynomial and its root search on every step, the isolation and refinement of the root at each impact,
+    the step's truncation there and the cooldown, which a C++ user of a terminal event pays too (the Python loop
+    and the rule's Python body cancel, up to the loops' small differences: measured with stand-in objects for
+    the integrators, loop (1)'s Python side is 0.06-0.1 us per impact cheaper, so the difference errs low by
+    that).  Raises when
+    heyoka stops with an error or takes 1000 steps per impact."""
+    cfg = _setting(setting)
+    ta = event_integrator(params.spring, float(cfg["tol"]), cfg["cooldown"], bool(cfg["high_accuracy"]))
+    bare, _ = bare_integrator(params.spring, float(cfg["tol"]), bool(cfg["high_accuracy"]), False)
+    dev = initial.deviations(params)
+    n_impacts = int(n_impacts)
+    times = np.empty(n_impacts)
+    ta.pars[:] = bare.pars[:] = [params.gamma, params.mu, params.xi_eq]
+    ta.time = 0.0
+    ta.reset_cooldowns()
+    restart = dev.x == 0.0 and dev.xdot > 0.0
+    ta.state[:] = [0.0, -dev.xdot, dev.xidot + dev.xdot, dev.eta] if restart else [dev.x, dev.xdot, dev.xidot,
+                                                                                     dev.eta]
+    n, k, n_skip, limit = -1 if restart else 0, 0, 1 if restart else 0, 1000 * n_impacts + 1000
+    step, ok = ta.step, (int(hy.taylor_outcome.success), int(hy.taylor_outcome.time_limit))
+    h_max = CHUNK_FLIGHTS * flight_bound(dev.x, dev.xdot, dev.xidot, params.xi_eq + dev.eta, params.gamma,
+                                         params.spring)
+    start = time.process_time()
+    while n < n_impacts and k < limit:
+        outcome = int(step(h_max)[0])
+        k += 1
+        if outcome == EVENT_STOP:
+            s = ta.state
+            u, v = s[1], s[2]
+            s[0] = 0.0
+            s[1] = -u
+            s[2] = u + v
+            if n >= 0:
+                times[n] = ta.time
+            n += 1
+        elif outcome not in ok:
+            break
+    cpu_events = time.process_time() - start
+    if n < n_impacts:
+        raise RuntimeError(f"heyoka's step loop found {max(n, 0)} of {n_impacts} impacts in {k} steps "
+                           f"(last outcome {outcome}, state {list(ta.state)!r})")
+    scratch, scratch_t = np.zeros(4), np.empty(n_impacts + n_skip)
+    done, m_rule, cpu_matched = 0, 0, 0.0
+    total = n_impacts + n_skip
+    while done < k:
+        bare.time = 0.0
+        bare.state[:] = [dev.x, dev.xdot, dev.xidot, dev.eta]
+        m = min(RESTART_STEPS, k - done)
+        j = 0
+        step = bare.step
+        start = time.process_time()
+        while j < m:
+            outcome = int(step(h_max)[0])
+            j += 1
+            if m_rule * k < total * (done + j):  # the rule as often as in loop (1), spread over the steps
+                s = bare.state
+                u, v = scratch[1], scratch[2]
+                scratch[0] = 0.0
+                scratch[1] = -u
+                scratch[2] = u + v
+                scratch_t[m_rule] = bare.time
+                m_rule += 1
+        cpu_matched += time.process_time() - start
+        done += m
+    return {"impacts": n_impacts, "steps": k, "t": times, "cpu_events": cpu_events, "cpu_matched": cpu_matched,
+            "rules_matched": m_rule}
+
+
 def _started(params, initial, setting, checked):
     """(ta, callback, cfg, dev): the integrator of :func:`integrator` for ``params.spring``, with its parameters,
     time 0, its callback reset, at the start state ``dev`` (:func:`_start`; eta = xi - params.xi_eq)."""
@@ -248,7 +419,8 @@ def _started(params, initial, setting, checked):
 
 
 def impacts(params, initial, max_events, t_end, setting=None):
-    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu)``.
+    """heyoka's fastest use for a sequence of impacts, for speed measurements: ``(t, xdot, xidot, eta, cpu,
+    steps)``.
 
     One ``propagate_until(t_end)`` call; the impact rule runs in the floor event's callback
     (:class:`_ImpactRule`), which stops the propagation after ``max_events`` impacts.  :func:`run`
@@ -256,7 +428,9 @@ def impacts(params, initial, max_events, t_end, setting=None):
     bound between propagations): 1.25x the CPU per Hertz impact (module docstring).  Here nothing is
     checked: a skipped impact shows as fewer than ``max_events`` impacts by
     ``t_end`` (x stays below the floor after it) or as impact times that differ from a reference,
-    which the caller compares.  ``cpu`` is the process time of the propagation alone.  ``t_end`` should
+    which the caller compares.  ``cpu`` is the process time of the propagation alone, ``steps`` heyoka's
+    Taylor steps in it (the step that ends at an impact counts as one; the propagation ends with the step of
+    the last impact when ``max_events`` are found; :func:`step_cost` prices a step).  ``t_end`` should
     be finite and of the order of the run: heyoka's event detection fails (EDOM in its root finder,
     every event missed) on a step ~1e8 long, which a flight whose x is an exact polynomial (the linear
     spring at rest) takes; :func:`run` propagates by CHUNK_FLIGHTS flight bounds for that reason.
@@ -264,9 +438,9 @@ def impacts(params, initial, max_events, t_end, setting=None):
     ta, rule, _, _ = _started(params, initial, setting, checked=False)
     rule.reset(max_events)
     start = time.process_time()
-    ta.propagate_until(t_end)
+    steps = ta.propagate_until(t_end)[3]
     cpu = time.process_time() - start
-    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu
+    return np.array(rule.t), np.array(rule.u), np.array(rule.v), np.array(rule.eta), cpu, int(steps)
 
 
 def _setting(setting):
