@@ -77,7 +77,8 @@ def work_precision_lines(results: Path) -> list[str]:
         err_1 = ds["err_one_step_max"].values
         exact_cpu = float(np.nanmedian(cpu[method == "exact"]))
         lines = [f"- Work-precision on the drop (`results/methods/work-precision.nc`, `results/timing/methods/`, n_h = {int(ds.attrs['n_h'])}; "
-                 "best over the settings tried; CPU per flight relative to the exact solver in the same run):"]
+                 "best over the settings tried; CPU of a one-flight call relative to the exact solver's in the same run, "
+                 "each call's set-up included: not a throughput, for which see \"Speed and accuracy\"):"]
         for m in dict.fromkeys(method):
             if m == "exact":
                 continue
@@ -85,7 +86,7 @@ def work_precision_lines(results: Path) -> list[str]:
             i = int(np.nanargmin(np.where(sel, err_1, np.inf)))
             lines.append(f"  - {m}: impact times of the first n_h impacts to {_sig(np.nanmin(err_t[sel]))} at best; "
                          f"one-step error {_sig(err_1[i])} at best, at {_sig(cpu[i] / exact_cpu)}x the exact "
-                         "solver's CPU per flight")
+                         "solver's CPU per one-flight call")
     return lines
 
 
