@@ -82,6 +82,9 @@ def test_three_points_switch_at_r_c():
 @pytest.mark.parametrize("changes, verdict", [
     ({}, REPRODUCED),
     ({"stop": 3}, NOT_REPRODUCED),  # an engine stop (overlap) in one dimer run
+    ({"stop": 5}, NOT_REPRODUCED),  # a collapse stop
+    ({"stop": 4}, REPRODUCED),  # a sticky pair contact past the twin's collapse: the engine's limit, not a failure
+    ({"stop": 4, "dimer_t": 4.0}, NOT_REPRODUCED),  # ... but before the twin's collapse it does not show the claim
     ({"dimer_t": 4.0}, NOT_REPRODUCED),  # its time did not pass the twin's collapse
     ({"dimer_collisions": 400.0}, NOT_REPRODUCED),  # fewer collisions per grain than the twin made
     ({"outcome": 1}, NOT_CHECKABLE),  # no rigid twin collapsed: nothing to compare with
