@@ -186,3 +186,25 @@ def log_edges(v: np.ndarray) -> np.ndarray:
         return np.array([v[0] / 10**0.5, v[0] * 10**0.5])
     mid = np.sqrt(v[1:] * v[:-1])
     return np.concatenate([[v[0] ** 2 / mid[0]], mid, [v[-1] ** 2 / mid[-1]]])
+
+
+def rn_grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
+    """The gas sweeps' grid: restitutions ``r``, grain numbers ``n`` (a list, or a log axis {min, max, n} rounded to
+    distinct integers) and ``samples`` random states per (r, n)."""
+    n = spec["n"]
+    ns = np.unique(np.rint(axis(n)).astype(np.int64)) if isinstance(n, dict) else np.asarray(n, dtype=np.int64)
+    return np.asarray(spec["r"], dtype=float), ns, int(spec["samples"])
+
+
+def rn_size(spec: dict) -> int:
+    """Items of a sweep over (r, n, sample) (:func:`rn_grid`)."""
+    r, ns, samples = rn_grid(spec)
+    return r.size * ns.size * samples
+
+
+def rn_prepare(spec: dict, items: np.ndarray) -> dict:
+    """(r, n) of each item of a sweep over (r, n, sample), in C order: item k = (i n_n + j) samples + s."""
+    r, ns, samples = rn_grid(spec)
+    items = np.asarray(items, dtype=np.int64)
+    i, j, _ = np.unravel_index(items, (r.size, ns.size, samples))
+    return {"r": r[i], "n": ns[j], "item": items}

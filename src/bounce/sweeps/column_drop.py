@@ -37,28 +37,11 @@ from ..analysis.gas_rings import mu_of_restitution
 from ..gas.common import FLOOR, PAIR, STOP_NAMES
 from ..gas.model import GasParameters, GasState, RigidParameters, RigidState
 from ..gas.simulate import GasRun, energy_excess
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, rn_grid, rn_prepare, rn_size
 
 NAME = "column-drop"
 #: events per chunk of a dimer run (every event's snapshot is kept for the chunk: 32 n bytes each)
 CHUNK = 1 << 14
-
-
-def _grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
-    return np.asarray(spec["r"], dtype=float), np.asarray(spec["n"], dtype=np.int64), int(spec["samples"])
-
-
-def size(spec: dict) -> int:
-    r, ns, samples = _grid(spec)
-    return r.size * ns.size * samples
-
-
-def prepare(spec: dict, items: np.ndarray) -> dict:
-    """(r, n) of each item: item k is (r_i, n_j, sample s) in C order over (r, n, sample)."""
-    r, ns, samples = _grid(spec)
-    items = np.asarray(items, dtype=np.int64)
-    i, j, _ = np.unravel_index(items, (r.size, ns.size, samples))
-    return {"r": r[i], "n": ns[j], "item": items}
 
 
 def drop_heights(n: int, height: float, gap: float, rng: np.random.Generator) -> np.ndarray:
@@ -167,7 +150,7 @@ VARIABLES = {
 
 def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     """The items on the (r, n, sample) grid, with mu(r), the minimum energy of each column and the settings."""
-    r, ns, samples = _grid(spec)
+    r, ns, samples = rn_grid(spec)
     gamma = float(spec["gamma"])
     out = xr.Dataset(attrs=dict(ds.attrs))
     for name, var in ds.data_vars.items():
@@ -235,5 +218,5 @@ def estimated_memory_mb(spec: dict) -> int:
 
 
 SWEEP = Sweep(NAME, "A column of dimers on the floor comes to rest without collapse; its rigid twin collapses "
-              "(beyond the paper)", size, prepare, compute,
+              "(beyond the paper)", rn_size, rn_prepare, compute,
               {k: v[:4] for k, v in VARIABLES.items()}, finish, plot, estimated_memory_mb)

@@ -26,27 +26,10 @@ import xarray as xr
 from ..analysis.gas_rings import dimer_state, mu_of_restitution, ring_points, run_rigid_ring
 from ..gas.model import GasParameters
 from ..gas.simulate import GasRun
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, rn_grid, rn_prepare, rn_size
 
 NAME = "dimer-gas-collapse"
 STOPS = ("max_events", "t_max", "no_more_events", "overlap", "sticky", "collapse", "root_finder_failed")
-
-
-def _grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
-    return np.asarray(spec["r"], dtype=float), np.asarray(spec["n"], dtype=np.int64), int(spec["samples"])
-
-
-def size(spec: dict) -> int:
-    r, ns, samples = _grid(spec)
-    return r.size * ns.size * samples
-
-
-def prepare(spec: dict, items: np.ndarray) -> dict:
-    """(r, n) of each item: item k is (r_i, n_j, sample s) with k = (i n_n + j) samples + s."""
-    r, ns, samples = _grid(spec)
-    cell, _ = np.divmod(np.asarray(items, dtype=np.int64), samples)
-    i, j = np.divmod(cell, ns.size)
-    return {"r": r[i], "n": ns[j], "item": np.asarray(items, dtype=np.int64)}
 
 
 def compute(spec: dict, inputs: dict) -> dict:
@@ -102,7 +85,7 @@ VARIABLES = {
 
 def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     """The items on the (r, n, sample) grid, with mu(r) and the settings."""
-    r, ns, samples = _grid(spec)
+    r, ns, samples = rn_grid(spec)
     out = xr.Dataset(attrs=dict(ds.attrs))
     for name, var in ds.data_vars.items():
         out[name] = xr.Variable(("r", "n", "sample"), var.values.reshape(r.size, ns.size, samples), var.attrs)
@@ -151,4 +134,4 @@ def estimated_memory_mb(spec: dict) -> int:
 
 
 SWEEP = Sweep(NAME, "Dimer gas where the rigid gas collapses: time goes on, collision rates stay finite (beyond the paper)",
-              size, prepare, compute, VARIABLES, finish, plot, estimated_memory_mb)
+              rn_size, rn_prepare, compute, VARIABLES, finish, plot, estimated_memory_mb)

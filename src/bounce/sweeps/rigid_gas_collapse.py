@@ -34,27 +34,9 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.gas_rings import CAP, COLLAPSE, ring_points, run_rigid_ring
-from .base import ITEM, Sweep, axis
+from .base import ITEM, Sweep, rn_grid, rn_prepare, rn_size
 
 NAME = "rigid-gas-collapse"
-
-
-def _grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
-    ns = np.unique(np.rint(axis(spec["n"])).astype(np.int64))
-    return np.asarray(spec["r"], dtype=float), ns, int(spec["samples"])
-
-
-def size(spec: dict) -> int:
-    r, ns, samples = _grid(spec)
-    return r.size * ns.size * samples
-
-
-def prepare(spec: dict, items: np.ndarray) -> dict:
-    """(r, n) of each item: item k is (r_i, n_j, sample s) with k = (i n_n + j) samples + s."""
-    r, ns, samples = _grid(spec)
-    cell, _ = np.divmod(np.asarray(items, dtype=np.int64), samples)
-    i, j = np.divmod(cell, ns.size)
-    return {"r": r[i], "n": ns[j], "item": np.asarray(items, dtype=np.int64)}
 
 
 def compute(spec: dict, inputs: dict) -> dict:
@@ -97,7 +79,7 @@ def _bracket_width(p: np.ndarray, ns: np.ndarray) -> float:
 
 def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     """Outcomes on the (r, n, sample) grid, P(n; r), N_c(r) with its bootstrap error, the McNamara-Young scale."""
-    r, ns, samples = _grid(spec)
+    r, ns, samples = rn_grid(spec)
     outcome = ds["outcome"].values.reshape(r.size, ns.size, samples)
     collapsed = (outcome == COLLAPSE).astype(float)
     p = collapsed.mean(axis=2)
@@ -171,4 +153,4 @@ def estimated_memory_mb(spec: dict) -> int:
 
 
 SWEEP = Sweep(NAME, "Rigid gas on a ring: the number of grains N_c(r) above which it collapses (beyond the paper)",
-              size, prepare, compute, VARIABLES, finish, plot, estimated_memory_mb)
+              rn_size, rn_prepare, compute, VARIABLES, finish, plot, estimated_memory_mb)

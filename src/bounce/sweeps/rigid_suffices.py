@@ -57,7 +57,7 @@ from ..analysis.theory import T_xi
 from ..gas.common import STOP_NAMES
 from ..gas.model import GasParameters, RigidParameters, RigidState
 from ..gas.simulate import GasRun
-from .base import ITEM, Sweep
+from .base import ITEM, Sweep, rn_grid, rn_prepare, rn_size
 
 NAME = "rigid-suffices"
 TIME = "time"
@@ -67,26 +67,9 @@ MERGE = 2.0
 DIMER_HORIZON = 2.0
 
 
-def _grid(spec: dict) -> tuple[np.ndarray, np.ndarray, int]:
-    return np.asarray(spec["r"], dtype=float), np.asarray(spec["n"], dtype=np.int64), int(spec["samples"])
-
-
 def free_times(spec: dict) -> np.ndarray:
     """The temperatures' log-spaced grid, in mean free times 1/omega0."""
     return np.geomspace(float(spec["time"]["min"]), float(spec["horizon"]), int(spec["time"]["points"]))
-
-
-def size(spec: dict) -> int:
-    r, ns, samples = _grid(spec)
-    return r.size * ns.size * samples
-
-
-def prepare(spec: dict, items: np.ndarray) -> dict:
-    """(r, n) of each item: item k is (r_i, n_j, sample s) with k = (i n_n + j) samples + s."""
-    r, ns, samples = _grid(spec)
-    cell, _ = np.divmod(np.asarray(items, dtype=np.int64), samples)
-    i, j = np.divmod(cell, ns.size)
-    return {"r": r[i], "n": ns[j], "item": np.asarray(items, dtype=np.int64)}
 
 
 def first_unresolved(t: np.ndarray, slot: np.ndarray, n: int, window: float) -> float:
@@ -202,7 +185,7 @@ VARIABLES = {
 
 def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     """The items on the (r, n, sample) grid, with mu(r), T_xi, the time grid and the settings."""
-    r, ns, samples = _grid(spec)
+    r, ns, samples = rn_grid(spec)
     out = xr.Dataset(attrs=dict(ds.attrs))
     for name, var in ds.data_vars.items():
         out[name] = xr.Variable(("r", "n", "sample") + var.dims[1:],
@@ -283,5 +266,5 @@ def estimated_memory_mb(spec: dict) -> int:
 
 
 SWEEP = Sweep(NAME, "Where the rigid gas suffices: parting of its collision sequence and temperature from the dimer "
-              "gas's over (r, n) (beyond the paper)", size, prepare, compute, VARIABLES, finish, plot,
+              "gas's over (r, n) (beyond the paper)", rn_size, rn_prepare, compute, VARIABLES, finish, plot,
               estimated_memory_mb)
