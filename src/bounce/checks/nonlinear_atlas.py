@@ -53,7 +53,14 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     data["limit_err"] = variable(("cell", "quantity"), err, "error of L: max(Richardson change, |L - tail fit|)")
     data["exponent"] = variable(("cell", "quantity"), p, "decay exponent of the correction (theory 1)")
     data["exponent_err"] = variable(("cell", "quantity"), p_err, "its error (window variants)")
-    data.attrs.update(check=NAME, sigmas=k, events=int(ds.attrs["events"]))
+    grid = np.meshgrid(ds["a"].values, ds["b"].values, np.arange(ds["rho"].size), indexing="ij")
+    for name, values, long_name in (("cell_a", grid[0], "exponent a of the cell's law"),
+                                    ("cell_b", grid[1], "exponent b of the cell's law"),
+                                    ("cell_constants", grid[2], "index of the cell's (rho, gamma, mu)")):
+        data[name] = variable(("cell",), values.ravel(), long_name)
+    data.attrs.update(check=NAME, sigmas=k, events=int(ds.attrs["events"]),
+                      constants="; ".join(f"rho = {r:g}, gamma = {g:g}, mu = {m:g}" for r, g, m in
+                                          zip(ds["rho"].values, ds["gamma"].values, ds["mu"].values)))
     ctx = (f"sweep alpha-atlas: {len(names)} cells, {int(ds.attrs['events']):.3g} events each from xi_eq, fits on "
            f"impacts n >= {int(ds.attrs['fit_n_min'])}")
     return SimpleNamespace(names=names, L=L, err=err, p=p, p_err=p_err, k=k, data=data, ctx=ctx,
@@ -107,27 +114,46 @@ def correction_decay(m, spec) -> Verdict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    """Each cell's (L - 1)/error for both limits and (p - 1)/error for the decay, with the tolerance band."""
+    """One a x b heat map per quantity (rows) and constant set (columns): the cell's deviation from the claimed value
+    in units of its error, clipped at twice the tolerance; cells the check could not determine hatched grey."""
+    from matplotlib.colors import Normalize
+
     from ..figures.common import WIDTH, plt, save
 
     k = float(ds.attrs["sigmas"])
-    fig, ax = plt.subplots(figsize=(WIDTH, 3.0), constrained_layout=True)
-    x = np.arange(ds.sizes["cell"])
-    series = [(ds["limit"].sel(quantity="alpha"), ds["limit_err"].sel(quantity="alpha"), 1.0, "o",
-               r"$(\lim n\dot X_n\alpha - 1)/$error"),
-              (ds["limit"].sel(quantity="flight"), ds["limit_err"].sel(quantity="flight"), 1.0, "s",
-               r"$(\lim \dot X_n/(\gamma\tau_n) - 1)/$error"),
-              (ds["exponent"].sel(quantity="alpha"), ds["exponent_err"].sel(quantity="alpha"), 1.0, "^",
-               r"(decay exponent $-1$)/error")]
-    for i, (v, e, target, marker, lab) in enumerate(series):
-        ax.plot(x + 0.15 * (i - 1), (v.values - target) / e.values, marker, ms=3.5, mfc="none", ls="none", label=lab)
-    ax.axhspan(-k, k, color="0.9", zorder=-1, label=f"tolerance: {k:g} x error")
-    ax.axhline(0.0, color="k", lw=0.6)
-    ax.set_xticks(x, [str(c) for c in ds["cell"].values], rotation=90, fontsize=4)
-    ax.set_ylabel("deviation in units of the cell's error")
-    ax.legend(fontsize=6, ncol=2)
-    fig.suptitle(f"power-law spring: fitted limits per cell of sweep alpha-atlas ({ds.attrs['events']:.3g} events; "
-                 "missing: not determined)", fontsize=8)
+    a_values, b_values = np.unique(ds["cell_a"].values), np.unique(ds["cell_b"].values)
+    constants = str(ds.attrs["constants"]).split("; ")
+    shape = (a_values.size, b_values.size, len(constants))
+    rows = [(ds["limit"].sel(quantity="alpha"), ds["limit_err"].sel(quantity="alpha"),
+             r"$\lim n\dot X_n\alpha$ (claim alpha-limit)"),
+            (ds["limit"].sel(quantity="flight"), ds["limit_err"].sel(quantity="flight"),
+             r"$\lim \dot X_n/(\gamma\tau_n)$ (flight-law)"),
+            (ds["exponent"].sel(quantity="alpha"), ds["exponent_err"].sel(quantity="alpha"),
+             "decay exponent p (correction-decay)")]
+    fig, axes = plt.subplots(len(rows), len(constants), figsize=(WIDTH, 6.4), constrained_layout=True, squeeze=False)
+    norm = Normalize(-2.0 * k, 2.0 * k)
+    for r, (value, error, label) in enumerate(rows):
+        z = ((value.values - 1.0) / error.values).reshape(shape)
+        for c, title in enumerate(constants):
+            ax = axes[r, c]
+            zc = z[:, :, c].T  # rows b, columns a
+            mesh = ax.pcolormesh(np.arange(a_values.size + 1), np.arange(b_values.size + 1),
+                                 np.clip(zc, -2.0 * k, 2.0 * k), cmap="RdBu_r", norm=norm)
+            for j, i in zip(*np.nonzero(~np.isfinite(zc))):
+                ax.add_patch(plt.Rectangle((i, j), 1, 1, facecolor="0.85", hatch="///", edgecolor="0.5", lw=0))
+            for j, i in zip(*np.nonzero(np.isfinite(zc))):
+                text = f"{zc[j, i]:.1f}".replace("-0.0", "0.0")
+                ax.text(i + 0.5, j + 0.5, text, ha="center", va="center", fontsize=5,
+                        color="w" if abs(zc[j, i]) > 1.2 * k else "k")
+            ax.set_xticks(np.arange(a_values.size) + 0.5, [f"{v:g}" for v in a_values], fontsize=6)
+            ax.set_yticks(np.arange(b_values.size) + 0.5, [f"{v:g}" for v in b_values], fontsize=6)
+            ax.grid(False)
+            ax.set_xlabel("a", fontsize=7)
+            ax.set_ylabel("b", fontsize=7)
+            ax.set_title((label + "\n" if c == 0 else "\n") + title, fontsize=6)
+    fig.colorbar(mesh, ax=axes, shrink=0.6, label=f"(value - 1)/error; tolerance +-{k:g}; hatched: not determined")
+    fig.suptitle(f"power-law spring: fitted limits over (a, b), sweep alpha-atlas ({ds.attrs['events']:.3g} events per "
+                 "cell)", fontsize=8)
     save(fig, outputs)
 
 
