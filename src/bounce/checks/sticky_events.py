@@ -184,8 +184,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.set_title("(b) thm. Finite-number-sticky-ev:\ncount and bound, $\\gamma=%s$" % tex_num(ds.attrs["gamma"]),
                  fontsize=8)
     ax.legend(fontsize=6)
-    fig.suptitle(f"Check {NAME}: runs with several sticky events and the proof's count bound (dimensionless)",
-                 fontsize=9)
+    fig.suptitle(f"Check {NAME}: (a) a run with several sticky events (mu = 0);\n(b) the mu > 0 runs' sticky counts "
+                 "(one each: a second onset is codimension 2) against the proof's bound", fontsize=8)
     fig.tight_layout()
     save(fig, outputs)
 
