@@ -62,13 +62,15 @@ class Sweep:
 
 
 def shard_items(n_items: int, shard: int, shards: int) -> np.ndarray:
-    """Item indices of shard ``shard`` (0-based) of ``shards``: contiguous, sizes differing by at most 1."""
+    """Item indices of shard ``shard`` (0-based) of ``shards``: every ``shards``-th item from ``shard`` on, sizes
+    differing by at most 1.  Strided, not contiguous: the sweeps' items grow in cost along their grids (more grains,
+    r nearer 1), and contiguous blocks left the last shard with most of the work (rigid-gas-collapse: 5.6 s against
+    42.6 s of wall time in a whole pipeline run).  :func:`gather` puts the items back in order."""
     if not 1 <= shards <= n_items:
         raise InputError(f"shards must be in [1, {n_items}] (the number of items), got {shards}")
     if not 0 <= shard < shards:
         raise InputError(f"shard must be in [0, {shards - 1}], got {shard}")
-    lo, hi = (n_items * shard) // shards, (n_items * (shard + 1)) // shards
-    return np.arange(lo, hi, dtype=np.int64)
+    return np.arange(shard, n_items, shards, dtype=np.int64)
 
 
 def _slice(inputs: dict, lo: int, hi: int) -> dict:
@@ -165,10 +167,12 @@ def gather(sweep: Sweep, spec: dict, shards: list[xr.Dataset]) -> xr.Dataset:
     shards = sorted(shards, key=lambda ds: int(ds.attrs["shard"]))
     items = np.concatenate([ds[ITEM].values for ds in shards])
     n = sweep.size(spec)
-    if not np.array_equal(items, np.arange(n)):
+    order = np.argsort(items, kind="stable")
+    if not np.array_equal(items[order], np.arange(n)):
         raise InputError(f"sweep {sweep.name}: the shards do not hold items 0..{n - 1} exactly once")
     arrays = combine([{k: ds[k].values for k in sweep.variables} for ds in shards], sweep.variables)
-    ds = to_dataset(sweep, spec, arrays, items)
+    arrays = {k: v[order] if sweep.variables[k][0][:1] == (ITEM,) else v for k, v in arrays.items()}
+    ds = to_dataset(sweep, spec, arrays, items[order])
     return sweep.finish(ds, spec)
 
 
