@@ -37,9 +37,8 @@ def spacetime(ds: xr.Dataset, spec: dict, outputs) -> None:
     model = "dimers" if "eta" in ds else "rigid grains"
     where = f"ring of circumference {wrap:g}" if wrap else f"column on the floor (gamma = {float(ds.attrs['gamma']):g})"
     ax.set(xlabel="time t (units of sqrt(m/2k), the paper's)", xlim=(t[0], t[-1]),
-           ylabel="position along the ring" if wrap else "height",
+           ylabel="position along the ring (rest lengths L)" if wrap else "height (rest lengths L)",
            title=f"{int(ds.sizes['grain'])} {model} on a {where}: world lines "
-                 f"(blue: lower masses{', orange: upper' if 'eta' in ds else ''}; lengths in units of the rest "
-                 "length)")
+                 f"(blue: lower masses{', orange: upper' if 'eta' in ds else ''})")
     ax.title.set_fontsize(8)
     save(fig, outputs)
