@@ -152,3 +152,28 @@ def test_every_plugin_module_is_registered(folder, single, family):
         assert entries, f"bounce.{folder}.{path.stem} defines neither {single} nor {family}"
         missing = [e.name for e in entries if not any(e is r for r in registered)]
         assert not missing, f"bounce.{folder}.{path.stem}: {missing} not in the discovered registry"
+
+
+def _imports_numba(path: Path) -> bool:
+    return any(isinstance(n, ast.Import) and any(a.name.split(".")[0] == "numba" for a in n.names)
+               or isinstance(n, ast.ImportFrom) and (n.module or "").split(".")[0] == "numba" and not n.level
+               for n in ast.walk(ast.parse(path.read_text())))
+
+
+def test_downstream_modules_define_no_kernel():
+    """The numba cache is keyed by the modules kernels may read (bounce._jit_cache.kernel_sources); the parts left out
+    (DOWNSTREAM: claims, figures, pipeline glue, command lines) must import no numba (define no kernel), and no module
+    with kernels may import them at module level (a kernel would read a constant whose edit does not refresh the
+    cache; a figure's import inside its plot function reaches no kernel)."""
+    from bounce._jit_cache import DOWNSTREAM, kernel_sources
+
+    package = Path(__file__).resolve().parents[1] / "src" / "bounce"
+    kept = kernel_sources(package)
+    left_out = [p for p in package.rglob("*.py") if p not in kept]
+    assert left_out and all(p.relative_to(package).parts[0] in DOWNSTREAM for p in left_out)
+    assert not [p for p in left_out if _imports_numba(p)], "a module left out of the cache key defines kernels"
+    downstream = {d.removesuffix(".py") for d in DOWNSTREAM}
+    for path in (p for p in kept if _imports_numba(p)):
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, ast.ImportFrom) and node.level and node.module:
+                assert node.module.split(".")[0] not in downstream, f"{path}, a module with kernels, imports {node.module}"
