@@ -4,8 +4,9 @@
   stamped with their id, kind and subject; a statement of the paper, a claim beyond it or a self-test is
   never ``not reproduced`` unless it declares a known failure, and an erratum (the text as printed) is
   never ``reproduced``.
-* the ``*_flips_*`` tests show that claims can fail: inputs doctored to follow a wrong law flip the
-  verdict of the claim that tests the law (and only that one).
+* ``test_falsifier_flips[group/id]``: every claim declares a falsifier (bounce.checks.base.Falsifier) or is an
+  identity; the falsifier's doctored inputs flip each row the true inputs decide.  The ``*_flips_*`` tests below
+  add finer cases: a wrong law flips the claim that tests it, and leaves the others alone.
 * the contract: no module of bounce.checks imports another; claim ids are unique; each subject is
   declared in config ``report.subjects``; one claim runs alone (``python -m bounce check``).
 * every experiment in the graph: the groups read their sweeps (small gathered files built here as the rules
@@ -36,13 +37,16 @@ from bounce.checks import contact_non_generic as ng
 from bounce.checks import rigid_collapse
 from bounce.checks.base import (
     ERRATUM,
+    IDENTITY,
     KINDS,
     NOT_CHECKABLE,
     NOT_REPRODUCED,
     PROBE_EVENTS,
     REPRODUCED,
     VERDICTS,
+    falsify,
     read_verdicts,
+    unflipped,
 )
 from bounce.checks.sticky_lemmas import sticky_run
 from bounce.claims_cli import apply_defaults, group_spec
@@ -214,6 +218,25 @@ def test_claim(name, claim):
             assert v.verdict != REPRODUCED, ("the printed form holds after all", v)
         elif not claim.known_failure:
             assert v.verdict != NOT_REPRODUCED, v
+
+
+FALSIFIABLE = [(n, c) for n, c in ALL_CLAIMS if c.falsifier is not None]
+
+
+@pytest.mark.parametrize("name, claim", FALSIFIABLE, ids=[f"{n}/{c.id}" for n, c in FALSIFIABLE])
+def test_falsifier_flips(name, claim):
+    """The claim's falsifier (bounce.checks.base.Falsifier) flips every row the true inputs decide (or the rows it
+    names): the claim can fail, and its tolerance is not wide enough to pass a wrong law."""
+    group = registry()[name]
+    true_rows = group.verdicts(measured(name), spec(name), only=claim.id)
+    doctored = falsify(group, claim.id, spec(name), inputs_for(name))
+    assert not unflipped(true_rows, doctored, claim.falsifier.labels), claim.falsifier.what
+
+
+def test_every_claim_has_a_falsifier_or_is_an_identity():
+    """Falsifiability is a rule of the contract: a claim without a falsifier is of kind identity, which says why."""
+    missing = [f"{n}/{c.id}" for n, c in ALL_CLAIMS if c.falsifier is None and c.kind != IDENTITY]
+    assert not missing, f"{len(missing)} claims declare no falsifier: {missing}"
 
 
 @pytest.mark.parametrize("name", sorted(registry()))

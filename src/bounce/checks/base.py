@@ -5,12 +5,17 @@ list, each returning one verdict (or one per input scene), with what the claim *
 
 * ``kind``: ``paper`` (a statement of the paper), ``erratum`` (the paper's text as printed, with
   the corrected form in the row; its verdict says whether the printed form holds), ``beyond``
-  (ours: rates, corrected forms, consequences the paper does not state) or ``self-test`` (the
-  solver's own classifier or error model);
+  (ours: rates, corrected forms, consequences the paper does not state), ``self-test`` (the
+  solver's own classifier or error model) or ``identity`` (a definition or a consistency identity: a
+  statement no input could contradict, e.g. a series against its own closed form; it has no falsifier,
+  says why in ``why_identity``, and is never counted as reproduced);
 * ``subject``: the theorem, lemma, figure or equation the claim backs (an id of config
   ``report.subjects``); the report groups by it;
 * ``known_failure``: why the verdict is expected to be ``not reproduced`` (an erratum, or a
-  statement of the paper the dynamics contradicts), empty otherwise.  Tests read it.
+  statement of the paper the dynamics contradicts), empty otherwise.  Tests read it;
+* ``falsifier``: a :class:`Falsifier`, the perturbation of the claim's inputs under which its verdict
+  must flip (every kind but ``identity`` declares one; tests/checks/test_claims.py::test_falsifier_flips
+  runs each, and fails when the verdict stays).
 
 A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
 
@@ -23,6 +28,9 @@ A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
    expectation under a stated tolerance whose origin is said in ``tolerance`` (physics or a
    measured error budget, never "what passes"); ``not checkable`` says why in ``measured``.
 3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone.
+4. every claim can fail: its :class:`Falsifier` doctors the inputs (records of a wrong law, a shifted parameter,
+   the printed form in place of the corrected one) so that its verdict flips (:func:`falsify`, :func:`unflipped`);
+   a claim no input could contradict is of kind ``identity`` and says why.
 
 No module of ``bounce.checks`` imports another: shared closed forms live in :mod:`bounce.analysis.theory`,
 fitting in :mod:`bounce.analysis.fitting`, mpmath in :mod:`bounce.analysis.reference`, experiments shared by several
@@ -47,6 +55,8 @@ name in their attributes (``sweep`` or ``experiment``).
 
 from __future__ import annotations
 
+import copy
+import sys
 from dataclasses import asdict, dataclass, fields, replace
 from typing import Callable
 
@@ -58,8 +68,8 @@ NOT_REPRODUCED = "not reproduced"
 NOT_CHECKABLE = "not checkable"
 VERDICTS = (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE)
 
-PAPER, ERRATUM, BEYOND, SELF_TEST = "paper", "erratum", "beyond", "self-test"
-KINDS = (PAPER, ERRATUM, BEYOND, SELF_TEST)
+PAPER, ERRATUM, BEYOND, SELF_TEST, IDENTITY = "paper", "erratum", "beyond", "self-test", "identity"
+KINDS = (PAPER, ERRATUM, BEYOND, SELF_TEST, IDENTITY)
 
 
 @dataclass(frozen=True)
@@ -85,37 +95,75 @@ class Verdict:
 
 
 @dataclass(frozen=True)
+class Falsifier:
+    """What must flip a claim's verdict: the claim can fail, and this shows it.
+
+    ``what`` says the perturbation in words (a wrong law, a shifted parameter, a corrupted record, the printed form in
+    place of the corrected one).  It is applied by one of, or both:
+
+    * ``doctor(inputs, spec) -> (inputs, spec)``: the group's input datasets (in the order ``measure`` gets them) and
+      config slice, perturbed; it copies what it changes, never modifies its arguments;
+    * ``patch() -> {name: replacement}``: names of the claim's own module swapped while the group measures and the
+      claim judges (a printed formula in place of the corrected one, for claims that read no data).
+
+    ``labels``: the per-scene rows that must flip (empty: every row the true inputs decide).  A row flips when
+    ``reproduced`` becomes ``not reproduced``, or, for a row whose true verdict is ``not reproduced`` (an erratum, a
+    known failure), the other way round: the doctored inputs follow the printed form.  See :func:`falsify`.
+    """
+
+    what: str
+    doctor: Callable | None = None
+    patch: Callable | None = None
+    labels: tuple = ()
+
+    def __post_init__(self) -> None:
+        if not self.what.strip() or (self.doctor is None and self.patch is None):
+            raise ValueError("a falsifier says what it perturbs and how (doctor or patch)")
+
+
+@dataclass(frozen=True)
 class Claim:
-    """One checkable property: its id (unique in its group), kind, subject and the function that judges it."""
+    """One checkable property: its id (unique in its group), kind, subject, the function that judges it and its
+    falsifier (or, for kind ``identity``, why it has none)."""
 
     id: str
     kind: str
     subject: str
     judge: Callable
     known_failure: str = ""
+    falsifier: Falsifier | None = None
+    why_identity: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
             raise ValueError(f"claim {self.id}: kind must be one of {KINDS}, got {self.kind!r}")
         if self.kind == ERRATUM and not self.known_failure:
             raise ValueError(f"claim {self.id}: an erratum says what is wrong in known_failure")
+        if (self.kind == IDENTITY) != bool(self.why_identity.strip()):
+            raise ValueError(f"claim {self.id}: an identity (and only an identity) says in why_identity why no input "
+                             "could falsify it")
+        if self.kind == IDENTITY and self.falsifier is not None:
+            raise ValueError(f"claim {self.id}: an identity has no falsifier")
 
 
-def claim(registry: list, id: str, kind: str, subject: str, known_failure: str = "") -> Callable:
+def claim(registry: list, id: str, kind: str, subject: str, known_failure: str = "",
+          falsifier: Falsifier | None = None, why_identity: str = "") -> Callable:
     """Decorator: append the function as a :class:`Claim` to ``registry`` (the module's ``CLAIMS``)."""
     def add(fn):
-        registry.append(Claim(id, kind, subject, fn, known_failure))
+        registry.append(Claim(id, kind, subject, fn, known_failure, falsifier, why_identity))
         return fn
     return add
 
 
-def recorded(registry: list, id: str, kind: str, subject: str, known_failure: str = "") -> None:
+def recorded(registry: list, id: str, kind: str, subject: str, known_failure: str = "",
+             falsifier: Falsifier | None = None, why_identity: str = "") -> None:
     """A declarative claim: its verdict row is recorded by the group's measurement in ``m.rows[id]`` (a Verdict, or
     a dict label -> Verdict; absent: no row).  For groups whose formulas share one computation step by step."""
     def from_measurement(m, spec):
         return m.rows.get(id, {})
     from_measurement.__name__ = id.replace("-", "_")
-    registry.append(Claim(id, kind, subject, from_measurement, known_failure))
+    from_measurement.__module__ = sys._getframe(1).f_globals["__name__"]
+    registry.append(Claim(id, kind, subject, from_measurement, known_failure, falsifier, why_identity))
 
 
 #: the most events one simulate() call inside a claim may follow (a constructed probe); longer runs are
@@ -202,6 +250,80 @@ class Check:
         """Measure, judge every claim, and return the numbers with the verdict table."""
         m = self.measure(spec, inputs)
         return verdict_dataset(self.verdicts(m, spec), m.data, title=self.title)
+
+
+def _scene(ds) -> bool:
+    return not (ds.attrs.get("experiment") or ds.attrs.get("sweep"))
+
+
+def on_scenes(fn: Callable) -> Callable:
+    """A falsifier's ``doctor``: ``fn(ds) -> ds`` applied to a deep copy of every scene among the inputs (the sweeps'
+    files and the experiments kept); it returns the dataset, changed or not."""
+    def doctor(inputs, spec):
+        return [fn(ds.copy(deep=True)) if _scene(ds) else ds for ds in inputs], spec
+    return doctor
+
+
+def on_named(name: str, fn: Callable) -> Callable:
+    """A falsifier's ``doctor``: ``fn(ds) -> ds`` applied to a deep copy of the sweep's gathered file or the experiment
+    called ``name`` among the inputs."""
+    def doctor(inputs, spec):
+        if not any(ds.attrs.get("experiment") == name or ds.attrs.get("sweep") == name for ds in inputs):
+            raise ValueError(f"falsifier: no input named {name!r}")
+        return [fn(ds.copy(deep=True)) if name in (ds.attrs.get("experiment"), ds.attrs.get("sweep")) else ds
+                for ds in inputs], spec
+    return doctor
+
+
+def on_spec(fn: Callable) -> Callable:
+    """A falsifier's ``doctor``: ``fn(spec) -> spec`` on a deep copy of the group's config slice."""
+    def doctor(inputs, spec):
+        return list(inputs), fn(copy.deepcopy(spec))
+    return doctor
+
+
+def with_variable(ds: xr.Dataset, name: str, values) -> xr.Dataset:
+    """``ds`` with variable ``name`` replaced by ``values`` (same dims and attributes): for doctoring records."""
+    ds[name] = (ds[name].dims, np.asarray(values), ds[name].attrs)
+    return ds
+
+
+def _label(v: Verdict) -> str:
+    return v.claim_id[v.claim_id.index("[") + 1:-1] if "[" in v.claim_id else ""
+
+
+def falsify(check: Check, claim_id: str, spec: dict, inputs) -> list[Verdict]:
+    """The rows of claim ``claim_id`` of ``check`` judged on its falsifier's doctored inputs (the patches of the
+    claim's module applied only while the group measures and judges)."""
+    c = next(c for c in check.claims if c.id == claim_id)
+    f = c.falsifier
+    inputs, spec = f.doctor(list(inputs), spec) if f.doctor else (list(inputs), spec)
+    module = sys.modules[c.judge.__module__]
+    swaps = f.patch() if f.patch else {}
+    saved = {name: getattr(module, name) for name in swaps}
+    try:
+        for name, value in swaps.items():
+            setattr(module, name, value)
+        return check.verdicts(check.measure(spec, inputs), spec, only=claim_id)
+    finally:
+        for name, value in saved.items():
+            setattr(module, name, value)
+
+
+def unflipped(true_rows: list[Verdict], doctored_rows: list[Verdict], labels=()) -> list[str]:
+    """Why the doctored rows do not falsify the true ones (empty: they do).  Each row the true inputs decide (or each
+    row named in ``labels``) must turn from reproduced to not reproduced, or from not reproduced to reproduced."""
+    flip = {REPRODUCED: NOT_REPRODUCED, NOT_REPRODUCED: REPRODUCED}
+    doctored = {_label(v): v.verdict for v in doctored_rows}
+    wanted = [v for v in true_rows if (_label(v) in labels if labels else v.verdict in flip)]
+    if not wanted:
+        return [f"no row to flip: the true rows are {[(v.claim_id, v.verdict) for v in true_rows]}"]
+    problems = []
+    for v in wanted:
+        got = doctored.get(_label(v), "no row")
+        if v.verdict not in flip or got != flip[v.verdict]:
+            problems.append(f"{v.claim_id}: {v.verdict} on the true inputs, {got} on the doctored ones")
+    return problems
 
 
 def variable(dims, values, long_name: str, units: str = "1", **extra) -> tuple:

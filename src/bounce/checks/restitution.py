@@ -43,7 +43,8 @@ import xarray as xr
 
 from ..analysis.restitution import double_impact, event_arrays, our_r_test
 from ..analysis.theory import our_r
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
+from .base import (BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Falsifier, Verdict, claim, judge, on_scenes,
+                   with_variable)
 
 NAME = "restitution"
 
@@ -140,7 +141,18 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "r-plateau", PAPER, "fig:rest-coeff")
+def _plateau_low(ds):
+    """Records whose r_m = f_(m+1)/f_m is 1 % low over the double-impact regime (f_m = tau_(2m) scaled by 0.99^m)."""
+    if "tau" in ds:
+        tau = ds["tau"].values.copy()
+        m = np.arange(1, min(200, (len(tau) - 1) // 2))
+        tau[2 * m] *= 0.99**m
+        with_variable(ds, "tau", tau)
+    return ds
+
+
+@claim(CLAIMS, "r-plateau", PAPER, "fig:rest-coeff",
+       falsifier=Falsifier("r_m 1 % below exp(-mu T_xi) over the plateau", on_scenes(_plateau_low)))
 def r_plateau(m, spec) -> dict:
     if not m.under:
         return {}

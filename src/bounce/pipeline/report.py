@@ -27,13 +27,14 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..checks.base import ERRATUM, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
+from ..checks.base import BEYOND, ERRATUM, KINDS, PAPER, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
 from ..checks._errata_register import REGISTER, SEVERITIES, entries_by_row, row_id
 
 ORDER = {NOT_REPRODUCED: 0, NOT_CHECKABLE: 1, REPRODUCED: 2}
 BADGE = {REPRODUCED: "reproduced", NOT_REPRODUCED: "**not reproduced**", NOT_CHECKABLE: "*not checkable*"}
 KIND_TITLES = {"paper": "statements of the paper", "erratum": "errata (the text as printed)",
-               "beyond": "beyond the paper", "self-test": "self-tests of the solver"}
+               "beyond": "beyond the paper", "self-test": "self-tests of the solver",
+               "identity": "identities and definitions (no input could falsify them; never counted as reproduced)"}
 
 
 @dataclass(frozen=True)
@@ -178,13 +179,15 @@ def kind_table_lines(reports, register=REGISTER) -> list[str]:
 def summaries(reports, subjects: dict) -> list[tuple[str, str, int]]:
     """(subject title, overall verdict, rows) for each declared subject, from the rows that declare it.
 
-    Errata are left out: a typo in a proof says nothing about whether the statement holds; they are
-    listed in their own section.
+    A subject of the paper is judged by the paper's statements only (kind ``paper``): errata are left out (a typo in
+    a proof says nothing about whether the statement holds; they are listed in their own section), and so are our
+    own readings beyond the paper, the solver's self-tests and identities, which never set a paper subject's
+    verdict.  A subject beyond the paper (id ``beyond:...``) is judged by its ``beyond`` rows.
     """
-    backing = [v for v in rows(reports) if v.kind != ERRATUM]
     out = []
     for sid, title in subjects.items():
-        mine = [v for v in backing if v.subject == sid]
+        kind = BEYOND if sid.startswith("beyond:") else PAPER
+        mine = [v for v in rows(reports) if v.subject == sid and v.kind == kind]
         out.append((title, overall(mine), len(mine)))
     return out
 
@@ -222,7 +225,9 @@ def markdown(reports, subjects, meta: dict, figures=()) -> str:
               f"{counts[NOT_CHECKABLE]} not checkable** (of {len(all_rows)} claims).", ""]
     lines += kind_table_lines(reports)
     lines += ["", "## Overall verdict per figure and per theorem", "",
-              "Errata are left out (listed below); every other claim backs the subject it declares.", "",
+              "Each subject of the paper is judged by the paper's statements that declare it (our readings beyond the paper, "
+              "self-tests, identities and errata are left out; errata are listed below); a subject beyond the paper by "
+              "its rows beyond the paper.", "",
               "| subject | verdict | claims |", "|---|---|---|"]
     lines += [f"| {s} | {_badge(v)} | {n} |" for s, v, n in summaries(reports, subjects)]
     lines += ["", "## All claims", "",
