@@ -75,7 +75,7 @@ rule all:
         "results/data/sticky-convergence.nc",
         "results/data/sticky-inference.nc",
         "results/report/validation.md",
-        "results/report/validation.html",
+        "results/report/article",
         [f"results/methods/{name}.nc" for name in STUDIES],
         SWEEP_FILES,
         [gas_scene_file(name) for name in GAS_SCENES],

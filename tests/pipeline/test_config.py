@@ -181,6 +181,10 @@ def test_gas_scene_is_refused_naming_it(path, value, words):
     ("checks.nonlinear-atlas.inputs", ["no-such-sweep"], "no dataset named 'no-such-sweep'"),
     ("checks.main-theorem.inputs", ["asymptotic-underdamped", "asymptotic-atlass"], "no dataset named 'asymptotic-atlass'"),
     ("figures.gas-spacetime.gas_scene", "nosuch", "no gas scene named 'nosuch'"),
+    ("report.sections.beyond.subjects", ["lem:alpha-map"], r"listed twice \['lem:alpha-map'\], missing \['beyond:gases'\]"),
+    ("report.sections.appendix.subjects", ["lem:nosuch"], r"unknown \['lem:nosuch'\]"),
+    ("report.choices", [{"text": "t", "keys": ["checks.restitution.few"]}],
+     r"report.choices\[0\].keys: 'checks.restitution.few' is not a key"),
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):

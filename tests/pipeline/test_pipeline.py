@@ -60,12 +60,18 @@ def test_sticky_study_matches_the_paper(ci_results):
 
 @pytest.mark.slow
 def test_validation_report(ci_results):
-    """Every configured check has rows in the report; the snakemake HTML report builds."""
+    """Every configured check has rows in the report; the article has a page per section of the paper; the snakemake
+    HTML report builds."""
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     md = (ci_results / "report" / "validation.md").read_text()
     for name in config["checks"]:
         assert f"(`{name}`)" in md, f"check {name} missing from the report"
     assert re.search(r"\*\*\d+ reproduced, \d+ not reproduced, \d+ not checkable\*\*", md)
+    article = ci_results / "report" / "article"
+    index = (article / "index.html").read_text()
+    for i, section in enumerate(config["report"]["sections"].values(), 1):
+        assert section["title"].split(":")[0] in index and (article / f"section-{i:02d}.html").exists()
+    assert (article / "errata.html").exists() and (article / "extension.html").exists()
     html = ci_results.parent / "report.html"
     snakemake(_launch_dir(ci_results), "--configfile", str(CI_CONFIG), "--report", str(html))
     assert html.stat().st_size > 100_000

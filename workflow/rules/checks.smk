@@ -57,8 +57,9 @@ rule check:
 
 
 rule report:
-    """The validation report: a table of every claim with its verdict, per-figure and per-theorem verdicts,
-    a section per check, the errata."""
+    """The validation report (markdown: a table of every claim with its verdict, per-subject verdicts, a section per
+    check, the errata) and the replication article (HTML built with Sphinx: the rows organised by the paper's
+    sections, the errata, what goes beyond the paper)."""
     input:
         nc=[f"results/checks/{name}.nc" for name in CHECKS],
         png=[f"results/checks/fig-{name}.png" for name in CHECKS],
@@ -66,10 +67,14 @@ rule report:
         figures=[f["path"] for f in PIPELINE_FIGURES],
     output:
         md="results/report/validation.md",
-        html=report("results/report/validation.html", caption="../report/validation.rst", category="Validation report"),
+        article=report(directory("results/report/article"), htmlindex="index.html", caption="../report/validation.rst",
+                       category="Validation report"),
     params:
-        # the subjects' declared order as a list (as_json sorts keys), and the figures with their captions
-        spec=as_json(dict(config["report"], subject_order=list(config["report"]["subjects"]), figures=PIPELINE_FIGURES)),
+        # the subjects' declared order as a list (as_json sorts keys), the sections in the paper's order, the figures
+        # with their captions, and the choices the paper leaves open with the config values that make them
+        spec=as_json(dict(config["report"], subject_order=list(config["report"]["subjects"]),
+                          sections={k: dict(v, order=i) for i, (k, v) in enumerate(config["report"]["sections"].items())},
+                          choices=report_choices(config), figures=PIPELINE_FIGURES)),
     resources:
         mem_mb=1000,
         runtime=10,
@@ -78,5 +83,5 @@ rule report:
     benchmark:
         "results/timing/report.tsv"
     shell:
-        "python -m bounce.pipeline.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.html} "
+        "python -m bounce.pipeline.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.article} "
         "> {log} 2>&1"

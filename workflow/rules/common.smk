@@ -4,6 +4,7 @@ so that no name is listed twice."""
 
 from bounce.paths import dataset, figure_file, gas_scene_file, sticky_dataset
 from bounce.pipeline.catalogue import figure_table, pipeline_figures
+from bounce.pipeline.config import report_choices
 from bounce.studies import study_inputs, study_slices
 
 

@@ -190,6 +190,37 @@ def _check_references(config: dict) -> None:
             need(f"checks.{check}.inputs[{i}]", name, datasets, "dataset")
 
 
+def _check_report(config: dict) -> None:
+    """config ``report.sections`` lists every subject of ``report.subjects`` once; ``report.choices`` name keys."""
+    report = config.get("report", {})
+    subjects = report.get("subjects", {})
+    listed = [s for sec in report.get("sections", {}).values() for s in sec["subjects"]]
+    unknown = sorted(set(listed) - set(subjects))
+    twice = sorted({s for s in listed if listed.count(s) > 1})
+    missing = [s for s in subjects if s not in listed]
+    if unknown or twice or missing:
+        raise ConfigError(f"report.sections must list every subject of report.subjects once: unknown {unknown}, "
+                          f"listed twice {twice}, missing {missing}")
+    report_choices(config)
+
+
+def report_choices(config: dict) -> list[dict]:
+    """config ``report.choices``, each with the values of the keys it names (dotted paths into the whole config,
+    defaults filled), for the article's front matter."""
+    out = []
+    for i, c in enumerate(config.get("report", {}).get("choices", [])):
+        values = {}
+        for key in c["keys"]:
+            node = config
+            for part in key.split("."):
+                if not isinstance(node, dict) or part not in node:
+                    raise ConfigError(f"report.choices[{i}].keys: {key!r} is not a key of the config")
+                node = node[part]
+            values[key] = node
+        out.append({"text": c["text"], "values": values})
+    return out
+
+
 def validated(config: dict, schema: dict | None = None) -> dict:
     """A deep copy of ``config`` with the schema's defaults filled in, or :class:`ConfigError`."""
     config = copy.deepcopy(dict(config))
@@ -199,4 +230,5 @@ def validated(config: dict, schema: dict | None = None) -> dict:
         raise ConfigError(_describe(error))
     _check_scenes(config)
     _check_references(config)
+    _check_report(config)
     return config

@@ -1,4 +1,5 @@
-"""The validation report: every claim group's verdict rows -> results/report/validation.{md,html}.
+"""The validation report: every claim group's verdict rows -> results/report/validation.md (the article,
+:mod:`bounce.pipeline.article`, is its browsable HTML organised by the paper).
 
 ReScience-style: counts per kind of claim (paper statement, beyond the paper, self-test: rows;
 errata: distinct errors of the text, each register entry of :mod:`bounce.checks._errata_register`
@@ -20,7 +21,6 @@ never read from the rows' prose.
 
 from __future__ import annotations
 
-import html
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -263,75 +263,16 @@ def markdown(reports, subjects, meta: dict, figures=()) -> str:
     return "\n".join(lines) + "\n"
 
 
-def to_html(reports, subjects, meta: dict, figures=()) -> str:
-    e = html.escape
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
-             f"<title>Validation report: {e(meta.get('title', ''))}</title>",
-             "<style>body{font-family:sans-serif;max-width:75em;margin:auto}table{border-collapse:collapse;"
-             "font-size:85%}td,th{border:1px solid #ccc;padding:3px 6px;vertical-align:top}"
-             ".reproduced{background:#e6f5e6}.not-reproduced{background:#fbe3e3}.not-checkable{background:#f3f3f3}"
-             "img{max-width:100%}</style></head><body>",
-             f"<h1>Validation report: {e(meta.get('title', ''))}</h1>",
-             f"<p>bounce {e(meta.get('version', '?'))}, git commit <code>{e(meta.get('commit', '?'))}</code></p>",
-             "<h2>Claims per kind</h2><table><tr><th>kind of claim</th><th>reproduced</th><th>not reproduced</th>"
-             "<th>not checkable</th></tr>"]
-    n_rows = errata_rows(reports)
-    parts += [f"<tr><td>{e(_kind_title(k, n_rows))}</td><td>{a}</td>"
-              f"<td>{b}</td><td>{c}</td></tr>" for k, a, b, c in kind_counts(reports)]
-    parts.append("</table><h2 id='errata-register'>Errata by severity</h2><p>Distinct errata of the register "
-                 "(src/bounce/checks/_errata_register.py), each counted once, with the claim rows of this run that check "
-                 "them.</p><table><tr><th>severity</th><th>distinct errata</th><th>checked by claim rows</th>"
-                 "<th>rows</th></tr>")
-    parts += [f"<tr><td>{e(sev)}</td><td>{n}</td><td>{checked}</td><td>{nr}</td></tr>"
-              for sev, n, checked, nr in severity_counts(reports)]
-    parts.append("</table><ul>")
-    for entry, mine, verdict in sorted(erratum_entries(reports), key=lambda t: SEVERITIES.index(t[0].severity)):
-        checked = ("checked by " + ", ".join(f"{v.claim_id} ({v.verdict})" for v in mine) + f": {verdict}"
-                   if mine else "recorded from the text")
-        parts.append(f"<li><b>{e(entry.id)}</b> ({e(entry.severity)}; {e(entry.section)}"
-                     f"{e(', ' + entry.label) if entry.label else ''}, l. {entry.line}): printed "
-                     f"<code>{e(entry.printed)}</code>, correct <code>{e(entry.correct)}</code>. {e(entry.evidence)}; "
-                     f"{e(checked)}</li>")
-    parts.append("</ul><h2>Overall verdict per figure and per theorem</h2><table><tr><th>subject</th>"
-                 "<th>verdict</th><th>claims</th></tr>")
-    for s, v, n in summaries(reports, subjects):
-        parts.append(f"<tr class='{v.split(' (')[0].replace(' ', '-')}'><td>{e(s)}</td><td>{e(v)}</td><td>{n}</td></tr>")
-    parts.append("</table><h2>All claims</h2><table><tr>" + "".join(
-        f"<th>{h}</th>" for h in ("id", "kind", "claim", "paper", "computed", "expected", "measured", "tolerance",
-                                  "verdict", "figure")) + "</tr>")
-    for r in reports:
-        for v in r.verdicts:
-            cells = (v.claim_id, v.kind, v.claim, v.paper_ref, v.computed, v.expected, v.measured, v.tolerance,
-                     v.verdict)
-            parts.append(f"<tr class='{v.verdict.replace(' ', '-')}'>" + "".join(f"<td>{e(c)}</td>" for c in cells)
-                         + f"<td><a href='#{e(r.name)}'>{e(r.name)}</a></td></tr>")
-    parts.append("</table>")
-    for r in reports:
-        parts.append(f"<h2 id='{e(r.name)}'>{e(r.title)}</h2><img src='{e(r.figure)}' alt='{e(r.name)}'><ul>")
-        parts += [f"<li><b>{e(v.verdict)}</b>: {e(v.claim)} ({e(v.paper_ref)}): measured {e(v.measured)}; "
-                  f"expected {e(v.expected)}; tolerance {e(v.tolerance)}</li>" for v in r.verdicts]
-        parts.append("</ul>")
-    parts.append("<h2 id='figures'>Figures</h2><p>Every figure of the pipeline besides the claim groups' own, with the "
-                 "figure of the paper it reproduces and its caption as printed, or what it shows.</p><table><tr>"
-                 "<th>figure</th><th>reproduces</th><th>caption</th></tr>")
-    parts += [f"<tr><td><a href='{e(f['link'])}'>{e(f['name'])}</a></td><td>{e(_reproduces(f))}</td>"
-              f"<td>{e(f['caption'])}</td></tr>" for f in figures]
-    parts.append("</table></body></html>")
-    return "\n".join(parts)
-
-
-def write(check_files, figure_files, out_md, out_html, subjects: dict, meta: dict, figures=()) -> None:
-    """Write the markdown and HTML reports (each atomically); ``subjects``: config ``report.subjects`` (in the order
-    to list them, :func:`ordered_subjects`); ``figures``: :func:`bounce.pipeline.catalogue.pipeline_figures`."""
-    report_dir = Path(out_md).parent
-    reports = load(check_files, figure_files, report_dir)
+def write(check_files, figure_files, out_md, subjects: dict, meta: dict, figures=()) -> None:
+    """Write the markdown report (atomically); ``subjects``: config ``report.subjects`` (in the order to list them,
+    :func:`ordered_subjects`); ``figures``: :func:`bounce.pipeline.catalogue.pipeline_figures`.  The browsable HTML is
+    the article (:mod:`bounce.pipeline.article`)."""
+    path = Path(out_md)
+    reports = load(check_files, figure_files, path.parent)
     check_subjects(reports, subjects)
     check_errata(reports)
-    figs = figure_entries(figures, report_dir)
-    for path, text in ((out_md, markdown(reports, subjects, meta, figs)),
-                       (out_html, to_html(reports, subjects, meta, figs))):
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f".{path.name}.tmp")
-        tmp.write_text(text)
-        os.replace(tmp, path)
+    text = markdown(reports, subjects, meta, figure_entries(figures, path.parent))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)

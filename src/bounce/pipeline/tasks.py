@@ -70,15 +70,18 @@ def _check_experiment(args) -> None:
 
 
 def _report(args) -> None:
-    """Gather every check into results/report/validation.{md,html}."""
+    """Gather every check into results/report/validation.md and the article (results/report/article/)."""
     from .._version import __version__
     from ..io import git_info
-    from .report import ordered_subjects, write
+    from . import article, report
 
     figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
-    meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0]}
-    write(args.inputs, figures, args.out[0], args.out[1], ordered_subjects(args.spec), meta,
-          figures=args.spec.get("figures", []))
+    subjects = report.ordered_subjects(args.spec)
+    meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0],
+            "packages": article.package_versions()}
+    report.write(args.inputs, figures, args.out[0], subjects, meta, figures=args.spec.get("figures", []))
+    article.write(args.inputs, figures, args.out[1], subjects, args.spec["sections"], args.spec["choices"], meta,
+                  figures=args.spec.get("figures", []))
 
 
 def _study(args) -> None:
