@@ -20,7 +20,7 @@ meaningful:
    same float64 State fed to the exact solver and to the method), one flight:
    relative error of the flight time and of the next post-impact speed;
 3. ``err_y_rms``: RMS error of y(t) over a fixed window (inside the horizon; only
-   with ``y_window``, which needs the exact solver's dense output: linear spring);
+   with ``y_window``: the exact solver's dense output, :mod:`bounce.sampling`, of either law);
 4. the asymptotic constant n tau_n c (c = mu g(xi_eq)/3: mu/3 on the linear spring, Theorem
    main_thm: -> 1; alpha gamma on the power law, :func:`asymptotic_scale`),
    median over the last ``window`` flights before each requested n and at the
@@ -336,7 +336,7 @@ def work_precision(spec: dict) -> xr.Dataset:
     wp = spec["work_precision"]
     params, initial = _scene(spec, wp["scene"])
     samples = None
-    if "y_window" in wp:  # optional: dense output of the exact solver exists for the linear spring only
+    if "y_window" in wp:  # optional: the exact solver's dense output (bounce.sampling), either law
         win = wp["y_window"]
         samples = np.linspace(float(win["t"][0]), float(win["t"][1]), int(win["samples"]))
     asym = wp["asymptotic"]
@@ -611,8 +611,7 @@ def _asym_symbol(ds: xr.Dataset) -> str:
 def plot_work_precision(ds: xr.Dataset, spec: dict, outputs) -> None:
     """Log-log panels of error against CPU time, one curve per method and fixed setting (colour; marker:
     the method), the exact solver as a dashed vertical line (its CPU time; its error is 0: it is the
-    reference).  Panel (b), y(t), only when the study has a y window (linear spring); without it the
-    legend takes its place.
+    reference).  Panel (b), y(t), only when the study has a y window; without it the legend takes its place.
 
     Panel (d) reads the long run: a hollow marker there is a run that failed before its last impact
     (the stability map says why); a run cut by its CPU budget is not a failure.  Every error of (d) is
@@ -783,8 +782,9 @@ STUDIES = (
           timed=True, caption="Where each general-purpose method stops on the fig. rigid-fall drop, and why."),
     Study("work-precision-hertz", work_precision, plot_work_precision,
           lambda c: study_slice(c["methods"], "work_precision", "work_precision_hertz"), timed=True,
-          caption="Work-precision of heyoka against bounce's power-law solver on the Hertz drop (a = b = 1/2)."),
+          caption=("Work-precision of scipy's DOP853, Moreau-Jean and heyoka against bounce's power-law solver on "
+                   "the Hertz drop (a = b = 1/2).")),
     Study("stability-map-hertz", stability_map, plot_stability_map,
           lambda c: study_slice(c["methods"], "stability_map", "stability_map_hertz"), timed=True,
-          caption="Where heyoka stops on the Hertz drop (a = b = 1/2), and why."),
+          caption="Where scipy's DOP853, Moreau-Jean and heyoka stop on the Hertz drop (a = b = 1/2), and why."),
 )
