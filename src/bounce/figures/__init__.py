@@ -79,18 +79,18 @@ FIGURES = {
                                 caption=Caption(
         "fig:rest-coeff", "Restitution coefficient computed using the definition (eq:Falcon-rest-coeff) from a "
         "simulation with gamma = 1e-5, mu = 1e-2, and initial conditions xi(0) = xi'(0) = psi'(0) = 0, psi(0) = 0.25.")),
-    "very_rigid_poincare": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare",
+    "very_rigid_poincare": _scene_figure(contacts.contact_portrait, "very_rigid_poincare", "methods/horizon",
                                          caption=Caption("fig:very_rigid_poincare", _POINCARE)),
-    "very_rigid_poincare_magni": _scene_figure(_one(contacts.contact_portrait_magni), "very_rigid_poincare",
+    "very_rigid_poincare_magni": _scene_figure(contacts.contact_portrait_magni, "very_rigid_poincare", "methods/horizon",
                                                caption=Caption("fig:very_rigid_poincare_magni",
                                                                "Magnification of the figure (fig:very_rigid_poincare), "
                                                                "close to (0,0,0).")),
-    "very_rigid_poincare_overdamped": _scene_figure(_one(contacts.contact_portrait), "very_rigid_poincare_overdamped",
+    "very_rigid_poincare_overdamped": _scene_figure(contacts.contact_portrait, "very_rigid_poincare_overdamped", "methods/horizon",
                                                     caption=Caption("fig:very_rigid_poincare_overdamped",
                                                                     "Same as figure (fig:very_rigid_poincare), but with "
                                                                     "mu = 2.")),
-    "very_rigid_poincare_overdamped_magni": _scene_figure(_one(contacts.contact_approach_magni),
-                                                          "very_rigid_poincare_overdamped", caption=Caption(
+    "very_rigid_poincare_overdamped_magni": _scene_figure(contacts.contact_approach_magni,
+                                                          "very_rigid_poincare_overdamped", "methods/horizon", caption=Caption(
         "fig:very_rigid_poincare_overdamped_magni",
         "Magnification of figure (fig:very_rigid_poincare_overdamped), close to (0,0,0).")),
     "sticky-traj": Figure(trajectories.sticky_traj,

@@ -20,10 +20,17 @@ def _impact_only(ds):
 def _horizon_impacts(horizon, ds) -> int:
     """float64 predictability horizon H (impacts t_1..t_H within the horizon study's tolerance of the
     mpmath reference) of the horizon regime with the scene's gamma, mu and psi(0)."""
+    return _horizon(horizon, ds)[0]
+
+
+def _horizon(horizon, ds) -> tuple[int, bool]:
+    """(H, reached): the float64 horizon of :func:`_horizon_impacts`, and whether it was reached inside the impacts
+    the study compared (else the float64 run tracked the reference as far as it was computed: H is a lower bound)."""
     for name in horizon["regime"].values:
         d = horizon.sel(regime=name)
         if all(np.isclose(float(d[k]), float(ds.attrs[a])) for k, a in (("gamma", "gamma"), ("mu", "mu"), ("psi0", "x0"))):
-            return int(d["horizon"].sel(precision="float64"))
+            h = int(d["horizon"].sel(precision="float64"))
+            return h, h < int(d["n_compared"])
     raise ValueError(f"horizon study has no regime with gamma = {ds.attrs['gamma']}, mu = {ds.attrs['mu']}, "
                      f"psi(0) = {ds.attrs['x0']} (config reduced.horizon.regimes)")
 
@@ -192,42 +199,70 @@ def _series(ax, n, values, name):
     ax.tick_params(labelsize=6)
 
 
-def contact_portrait(ds, spec, outputs) -> None:
+def _horizon_text(horizon, ds) -> str:
+    """The float64 predictability horizon in words, for the Poincare figures' titles."""
+    h, reached = _horizon(horizon, ds)
+    if not reached:
+        return r"float64 tracks the exact contacts at least to $n=%d$ (as far as the horizon study compared)" % h
+    return (r"past the float64 horizon $n>%d$ the states are the dynamics' shape, not the true trajectory's contacts"
+            % h)
+
+
+def _mark_horizon(axes, horizon, ds, n_last: int) -> None:
+    """A dash-dot line at the float64 horizon H and the contacts past it shaded, when H falls inside the panel."""
+    h, reached = _horizon(horizon, ds)
+    if not reached or h >= n_last:
+        return
+    for ax in axes:
+        ax.axvline(h + 0.5, color="0.3", lw=0.9, ls="-.")
+        ax.axvspan(h + 0.5, n_last * 1.5, color="0.92", zorder=0)
+    axes[0].text(h * 0.92, 0.97, r"float64 horizon ($t_{%d}$)" % h, transform=axes[0].get_xaxis_transform(),
+                 ha="right", va="top", fontsize=6, color="0.3")
+
+
+def contact_portrait(datasets, spec, outputs) -> None:
     """Figs. very_rigid_poincare(_overdamped): state just after each of the first ``events`` contacts.
 
     (a) the paper's 3-D view (Xdot_n, Y_n - y_eq, Ydot_n); (b) Ydot_n and (c) Y_n - y_eq against n:
     the double impacts' zig-zag (sign of Ydot_n alternating) and the disordered transient for
     mu < 1; for mu = 2 the spring shrinking for the first impacts, then expanding towards its
     equilibrium length monotonically from below (Y_n - y_eq < 0 rising to 0), as section 8.1 says.
+    The float64 predictability horizon (study horizon: the contacts whose times float64 gets to 1e-8 of the mpmath
+    reference) is marked in (b) and (c): past it the contacts are not those of the true system, only its shape.
     """
+    ds, horizon = datasets
     n, xdot, ydev, ydot = _states(ds, 0, int(spec["events"]))
-    fig = plt.figure(figsize=(WIDTH, 3.6))
-    grid = fig.add_gridspec(2, 2, width_ratios=(1.25, 1.0), hspace=0.28, wspace=0.45)
+    fig = plt.figure(figsize=(WIDTH, 3.8))
+    grid = fig.add_gridspec(2, 2, width_ratios=(1.25, 1.0), hspace=0.28, wspace=0.45, top=0.86)
     ax3, pts = _portrait_3d(fig, grid[:, 0], n, xdot, ydev, ydot, "(a) state just after contact $n$")
     axes = [fig.add_subplot(grid[0, 1]), None]
     axes[1] = fig.add_subplot(grid[1, 1], sharex=axes[0])
     for ax, values, name, letter in zip(axes, (ydot, ydev), (YDOT, YDEV), "bc"):
         _series(ax, n, values, name)
         ax.set_title(f"({letter})", loc="left", fontsize=7, pad=2)
+    _mark_horizon(axes, horizon, ds, int(n[-1]))
+    axes[0].set_xlim(0.7, n[-1] * 1.3)
     axes[0].tick_params(labelbottom=False)
     axes[1].set_xlabel(r"contact $n$", fontsize=8)
     bar = fig.colorbar(pts, ax=axes, shrink=0.8, pad=0.03, aspect=30)
     bar.set_label(r"$\log_{10} n$ (contact index)", fontsize=7)
     bar.ax.tick_params(labelsize=6)
     fig.suptitle(r"Fig. %s: %s, contacts 1-%d (lengths in $L$, speeds in $L/\sqrt{m/2k}$; "
-                 r"$y_{eq}=1-2\gamma$)" % (spec.get("label", "very_rigid_poincare"), _regime(ds), n[-1]), fontsize=8)
+                 r"$y_{eq}=1-2\gamma$)" "\n%s" % (spec.get("label", "very_rigid_poincare"), _regime(ds), n[-1],
+                                              _horizon_text(horizon, ds)), fontsize=8)
     save(fig, outputs)
 
 
-def contact_portrait_magni(ds, spec, outputs) -> None:
+def contact_portrait_magni(datasets, spec, outputs) -> None:
     """Figs. very_rigid_poincare(_overdamped)_magni: near (0, 0, 0), at several magnifications.
 
     (a) the 3-D view of the first window of ``magni_windows`` (contact ranges [first, last));
     (b)-(e) the projection (Y_n - y_eq, Ydot_n) of each window, each at its own scale: for mu < 1
     the damped oscillation of the spring about its equilibrium makes the states spiral in (the
     same spiral at every magnification); for mu = 2 they approach it monotonically from below,
-    with no spiral.
+    with no spiral.  The title says where the float64 predictability horizon lies (study horizon).
     """
+    ds, horizon = datasets
     windows = [tuple(int(v) for v in w) for w in spec["magni_windows"]]
     states = [_states(ds, a, b) for a, b in windows]
     cols = (len(windows) + 1) // 2
@@ -240,23 +275,26 @@ def contact_portrait_magni(ds, spec, outputs) -> None:
                     "(%s) contacts %d-%d" % ("bcdefgh"[k], n[0], n[-1]))
     fig.suptitle(r"Fig. %s: %s, close to $(0,0,0)$" "\n"
                  r"(b)-(%s): projection on $(Y_n-y_{eq}, \dot Y_n)$, each window at its own scale; "
-                 r"$+$: equilibrium; colour: $\log_{10} n$" % (spec.get("label", "very_rigid_poincare_magni"),
-                                                             _regime(ds), "bcdefgh"[len(windows) - 1]), fontsize=8)
+                 r"$+$: equilibrium; colour: $\log_{10} n$" "\n%s" % (spec.get("label", "very_rigid_poincare_magni"),
+                                                                  _regime(ds), "bcdefgh"[len(windows) - 1],
+                                                                  _horizon_text(horizon, ds)), fontsize=8)
     save(fig, outputs)
 
 
-def contact_approach_magni(ds, spec, outputs) -> None:
+def contact_approach_magni(datasets, spec, outputs) -> None:
     """Fig. very_rigid_poincare_overdamped_magni: the approach to (0, 0, 0) for mu = 2.
 
     (a) the 3-D view of the contacts ``magni_3d`` with the equilibrium in view; (b) the three
     coordinates against n on log-log axes over the whole run (every decade a magnification):
     y_eq - Y_n, Ydot_n and Xdot_n stay positive and decrease monotonically from ``magni_3d[0]``
     on -- the spring approaches its equilibrium length from below, with no spiral.  The legend
-    counts the contacts where a coordinate has the other sign or is not smaller than the one before.
+    counts the contacts where a coordinate has the other sign or is not smaller than the one before.  The title
+    says where the float64 predictability horizon lies (study horizon).
     """
+    ds, horizon = datasets
     n, xdot, ydev, ydot = _states(ds, *spec["magni_3d"])
-    fig = plt.figure(figsize=(WIDTH, 3.2))
-    grid = fig.add_gridspec(1, 2, width_ratios=(1.2, 1.0), wspace=0.5)
+    fig = plt.figure(figsize=(WIDTH, 3.4))
+    grid = fig.add_gridspec(1, 2, width_ratios=(1.2, 1.0), wspace=0.5, top=0.84)
     _portrait_3d(fig, grid[0, 0], n, xdot, ydev, ydot, "(a) contacts %d-%d" % (n[0], n[-1]), origin=True)
     ax = fig.add_subplot(grid[0, 1])
     first = int(spec["magni_3d"][0])
@@ -272,6 +310,7 @@ def contact_approach_magni(ds, spec, outputs) -> None:
     ax.text(0.03, 0.03, "all three positive and decreasing\nat every contact" if bad == 0 else
             "%d (coordinate, contact) pairs not\npositive and decreasing" % bad,
             transform=ax.transAxes, fontsize=7, va="bottom")
-    fig.suptitle(r"Fig. %s: %s, close to $(0,0,0)$ (red $+$: equilibrium)"
-                 % (spec.get("label", "very_rigid_poincare_overdamped_magni"), _regime(ds)), fontsize=8)
+    fig.suptitle(r"Fig. %s: %s, close to $(0,0,0)$ (red $+$: equilibrium)" "\n%s"
+                 % (spec.get("label", "very_rigid_poincare_overdamped_magni"), _regime(ds), _horizon_text(horizon, ds)),
+                 fontsize=8)
     save(fig, outputs)
