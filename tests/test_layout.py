@@ -177,3 +177,24 @@ def test_downstream_modules_define_no_kernel():
         for node in ast.parse(path.read_text()).body:
             if isinstance(node, ast.ImportFrom) and node.level and node.module:
                 assert node.module.split(".")[0] not in downstream, f"{path}, a module with kernels, imports {node.module}"
+
+
+def test_a_job_finds_its_plugin_without_importing_the_others():
+    """checks.get / sweeps.get / studies.get return the registry's object, importing only the plugin's own module
+    when it is named for the plugin (a study of a family module falls back to discovery)."""
+    import subprocess
+    import sys
+
+    from bounce.checks import get as get_check, registry as checks
+    from bounce.studies import get as get_study, registry as studies
+    from bounce.sweeps import get as get_sweep, registry as sweeps
+
+    for get, registry in ((get_check, checks), (get_sweep, sweeps), (get_study, studies)):
+        for name, obj in registry().items():
+            assert get(name) == obj, name
+        with pytest.raises(KeyError):
+            get("no-such-plugin")
+    code = ("import sys; from bounce.checks import get; get('rigid-collapse'); "
+            "print(sorted(m for m in sys.modules if m.startswith('bounce.checks.')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "bounce.checks.rigid_collapse" in out and "bounce.checks.errata" not in out, out

@@ -23,6 +23,21 @@ def discover(package: str, path, attribute: str, kind: type, family: str | None 
     return found
 
 
+def find(package: str, path, attribute: str, kind: type, name: str, family: str | None = None):
+    """The plugin ``name`` of ``package``, importing only its own module when that module is named for it (``name``
+    with ``-`` as ``_``: check ``main-theorem`` in ``main_theorem.py``), else every module (:func:`discover`).
+
+    A pipeline job runs one plugin: importing the others (scipy.optimize, the figures, sympy's loaders) would cost it
+    about a second of CPU.  KeyError, as ``discover(...)[name]``, when no module defines it."""
+    own = name.replace("-", "_")
+    if any(info.name == own for info in pkgutil.iter_modules(path)):
+        module = importlib.import_module(f"{package}.{own}")
+        for obj in [getattr(module, attribute, None), *getattr(module, family or attribute + "S", ())]:
+            if isinstance(obj, kind) and obj.name == name:
+                return obj
+    return discover(package, path, attribute, kind, family)[name]
+
+
 def lazy_import(name: str):
     """The module ``name``, executed at its first attribute access (importlib.util.LazyLoader).
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import PurePosixPath
 
-from .._registry import discover
+from .._registry import discover, find
 from ..paths import sticky_dataset
 from .base import Check
 
@@ -20,6 +20,11 @@ STICKY_RUNS = "sticky-runs"
 def registry() -> dict[str, Check]:
     """name -> Check for every module of this package that defines ``CHECK``."""
     return discover(__name__, __path__, "CHECK", Check)
+
+
+def get(name: str) -> Check:
+    """The claim group ``name``, importing only its own module (what a pipeline job needs)."""
+    return find(__name__, __path__, "CHECK", Check, name)
 
 
 def input_files(name: str, config: dict, data: str = "results/data", sweeps: str = "results/sweeps") -> list[str]:

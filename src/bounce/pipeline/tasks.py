@@ -47,9 +47,9 @@ def _figure(args) -> None:
 
 def _check(args) -> None:
     """Run one validation check: its dataset (numbers + verdicts) and its figure."""
-    from ..checks import registry
+    from ..checks import get
 
-    check = registry()[args.name]
+    check = get(args.name)
     ds = check.run(args.spec, [read_dataset(p) for p in args.inputs])
     ds.attrs.setdefault("check", args.name)
     write_netcdf(ds, args.out[0])
@@ -59,10 +59,10 @@ def _check(args) -> None:
 def _check_experiment(args) -> None:
     """One long simulation of a claim group (``--experiment NAME``), from the config keys it declares."""
     from .._version import __version__
-    from ..checks import registry
+    from ..checks import get
     from ..io import git_info
 
-    ds = registry()[args.name].experiment(args.experiment).dataset(args.spec)
+    ds = get(args.name).experiment(args.experiment).dataset(args.spec)
     commit, dirty = git_info()
     ds.attrs.update({"Conventions": "CF-1.10", "source": f"bounce {__version__}", "git_commit": commit,
                      "git_dirty": dirty, "check": args.name, "config": json.dumps(args.spec, sort_keys=True)})
@@ -85,14 +85,14 @@ def _report(args) -> None:
 
 
 def _study(args) -> None:
-    """One study (registry: bounce.studies.registry): its dataset, its timings, its figure.
+    """One study (bounce.studies.get): its dataset, its timings, its figure.
 
     ``--out NC TIMING_NC PNG PDF``: the CPU times go to TIMING_NC so that NC is byte-reproducible.
     """
     from ..io import split_timings
-    from ..studies import registry
+    from ..studies import get
 
-    study = registry()[args.name]
+    study = get(args.name)
     build, plot = study.build, study.plot
     ds = build(args.spec)
     result, timings = split_timings(ds)
@@ -111,13 +111,13 @@ def _readme(args) -> None:
 
 def _sweep_shard(args) -> None:
     """One shard of a sweep (``--shard K``) on ``--workers`` processes."""
-    from ..sweeps import registry
+    from ..sweeps import get
     from ..sweeps.base import run_shard
 
     import time
 
     start = time.perf_counter()
-    ds = run_shard(registry()[args.name], args.spec, args.shard, args.workers)
+    ds = run_shard(get(args.name), args.spec, args.shard, args.workers)
     write_netcdf(ds, args.out[0])
     seconds = time.perf_counter() - start
     print(f"{args.name} shard {args.shard}: {ds.sizes['item']} items in {seconds:.1f} s on {args.workers} "
@@ -126,17 +126,17 @@ def _sweep_shard(args) -> None:
 
 def _sweep_gather(args) -> None:
     """Every shard of a sweep -> its dataset."""
-    from ..sweeps import registry
+    from ..sweeps import get
     from ..sweeps.base import gather
 
-    write_netcdf(gather(registry()[args.name], args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
+    write_netcdf(gather(get(args.name), args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
 
 
 def _sweep_figure(args) -> None:
     """A sweep's figure, from its gathered dataset alone."""
-    from ..sweeps import registry
+    from ..sweeps import get
 
-    registry()[args.name].plot(read_dataset(args.inputs[0]), args.spec, args.out)
+    get(args.name).plot(read_dataset(args.inputs[0]), args.spec, args.out)
 
 
 def _thumbnails(args) -> None:

@@ -14,13 +14,18 @@ and declared in ``Study.scenes`` (least-model).
 
 from __future__ import annotations
 
-from .._registry import discover
+from .._registry import discover, find
 from .base import Study
 
 
 def registry() -> dict[str, Study]:
     """name -> Study for every module of this package that defines ``STUDY`` (or ``STUDIES``)."""
     return discover(__name__, __path__, "STUDY", Study, family="STUDIES")
+
+
+def get(name: str) -> Study:
+    """The study ``name`` (its module when named for it, else every module)."""
+    return find(__name__, __path__, "STUDY", Study, name, family="STUDIES")
 
 
 def study_slices(config: dict) -> dict:

@@ -8,10 +8,15 @@ from __future__ import annotations
 
 import functools
 
-from .._registry import discover
+from .._registry import discover, find
 from .base import Sweep
 
 
 @functools.cache
 def registry() -> dict[str, Sweep]:
     return discover(__name__, __path__, "SWEEP", Sweep)
+
+
+def get(name: str) -> Sweep:
+    """The sweep ``name``, importing only its own module (what a shard, gather or figure job needs)."""
+    return find(__name__, __path__, "SWEEP", Sweep, name)
