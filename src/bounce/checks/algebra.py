@@ -364,7 +364,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         "Xdot_n = o(T_n^2))", ok_3)
 
     # eqs. tau3, strange-combination, contradiction
-    a2, a3, xd0, Dl = sp.symbols("Xddot_n x3 Xdot_n Delta_n", real=True)
+    Dl = sp.Symbol("Delta_n", real=True)
     A2 = sp.Symbol("A", positive=True)  # |Xddot_n|, Xddot_n = -A
     a3p = sp.Symbol("c", positive=True)  # x'''(zeta_n) > 0
     xdp = sp.Symbol("v", positive=True)  # Xdot_n > 0
