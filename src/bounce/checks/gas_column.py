@@ -28,6 +28,9 @@ and by orders of magnitude between states at r <= 0.8 (config.yaml); their time 
 time 850, 575, 341, 267, 165 (1744, 1230, 739, 514, 349), always the bottom grain alone on the floor (the grains
 above knock it down, sooner the more there are), the single ball's (v_0/gamma)(1 + r)/(1 - r) to the last bit at
 n = 1.  The dimers' smallest interval between events is 1.5e-8: time advances through every impact.
+
+Falsifiers (tests/checks/test_claims.py::test_falsifier_flips): the tallest column's dimers cut by the event cap before
+rest, its rigid twin cut by the cap instead of collapsing, the drop height recorded 1e-9 relative high.
 """
 
 from __future__ import annotations
@@ -40,7 +43,7 @@ import numpy as np
 import xarray as xr
 
 from ..gas.common import STOP_COLLAPSE, STOP_EVENTS
-from .base import BEYOND, NOT_CHECKABLE, Check, Verdict, claim, judge, split_inputs, variable
+from .base import BEYOND, NOT_CHECKABLE, Check, Falsifier, Verdict, claim, judge, on_named, split_inputs, variable
 
 NAME = "gas-column"
 SUBJECT = "beyond:gases"
@@ -98,10 +101,33 @@ def _per_n(m, values: np.ndarray, fmt: str) -> str:
                      for r, row in zip(m.r, med))
 
 
+# --------------------------------------------------------------------------- falsifiers
+
+def _tallest_not_at_rest(ds: xr.Dataset) -> xr.Dataset:
+    """The tallest column's dimers cut by the event cap before rest: not rested, energy fraction twice ``rest``."""
+    ds["dimer_rested"].values[:, -1, :] = 0
+    ds["dimer_energy"].values[:, -1, :] = 2.0 * float(ds.attrs["rest"])
+    return ds
+
+
+def _tallest_rigid_capped(ds: xr.Dataset) -> xr.Dataset:
+    """The tallest column's rigid twin cut by the event cap, not collapsed."""
+    ds["rigid_stop"].values[:, -1, :] = STOP_EVENTS
+    return ds
+
+
+def _height_recorded_high(ds: xr.Dataset) -> xr.Dataset:
+    """The drop height recorded 1e-9 relative above the runs' (a parameter off in its ninth digit)."""
+    ds.attrs["height"] = float(ds.attrs["height"]) * (1.0 + 1e-9)
+    return ds
+
+
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "dimer-column-rests", BEYOND, SUBJECT)
+@claim(CLAIMS, "dimer-column-rests", BEYOND, SUBJECT,
+       falsifier=Falsifier("the tallest dimer column cut by the event cap before rest (energy fraction 2 x rest)",
+                           on_named("column-drop", _tallest_not_at_rest)))
 def dimer_column_rests(m, spec) -> Verdict:
     ds = m.ds
     stops = ds["dimer_stop"].values
@@ -122,7 +148,9 @@ def dimer_column_rests(m, spec) -> Verdict:
         measured, "exact (the engine's stop, the recorded energies and times)", judge(bool(ok.all())))
 
 
-@claim(CLAIMS, "rigid-column-collapses", BEYOND, SUBJECT)
+@claim(CLAIMS, "rigid-column-collapses", BEYOND, SUBJECT,
+       falsifier=Falsifier("the tallest rigid column cut by the event cap instead of collapsing",
+                           on_named("column-drop", _tallest_rigid_capped)))
 def rigid_column_collapses(m, spec) -> Verdict:
     ds = m.ds
     ok = m.collapsed & np.isfinite(m.t_collapse)
@@ -140,7 +168,10 @@ def rigid_column_collapses(m, spec) -> Verdict:
         measured, "exact (the engine's stop)", judge(bool(ok.all())))
 
 
-@claim(CLAIMS, "rigid-column-single-ball", BEYOND, SUBJECT)
+@claim(CLAIMS, "rigid-column-single-ball", BEYOND, SUBJECT,
+       falsifier=Falsifier("the drop height recorded 1e-9 relative above the runs' (collapse time off by 5e-10)",
+                           on_named("column-drop", _height_recorded_high)))
+
 def rigid_column_single_ball(m, spec) -> Verdict:
     text = "one rigid grain on the floor collapses at t = (v0/gamma)(1 + r)/(1 - r), v0 = sqrt(2 gamma h)"
     ref = "the bouncing ball with constant restitution (introduction: rigid models collapse)"
