@@ -7,6 +7,8 @@ from bounce.checks import input_files as check_input_files
 from bounce.checks import registry as check_registry
 
 CHECK_GROUPS = check_registry()
+#: the configured groups without a figure (bounce.checks.base.Check.plot is None: exact algebra)
+FIGURELESS = [name for name in CHECKS if CHECK_GROUPS[name].plot is None]
 
 
 rule check_experiment:
@@ -50,10 +52,32 @@ rule check:
     benchmark:
         "results/timing/checks/{name}.tsv"
     wildcard_constraints:
-        name="|".join(re.escape(n) for n in CHECKS),
+        name="|".join(re.escape(n) for n in CHECKS if n not in FIGURELESS),
     shell:
         "python -m bounce.pipeline.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
+
+
+rule check_without_figure:
+    """A claim group without a figure (exact algebra): its numbers and verdicts only."""
+    input:
+        lambda w: check_input_files(w.name, config),
+    output:
+        nc="results/checks/{name}.nc",
+    params:
+        spec=lambda w: as_json(config["checks"][w.name]),
+    resources:
+        mem_mb=4000,
+        runtime=60,
+    log:
+        "results/logs/checks/{name}.log",
+    benchmark:
+        "results/timing/checks/{name}.tsv"
+    wildcard_constraints:
+        name="|".join(re.escape(n) for n in FIGURELESS) or "(?!)",
+    shell:
+        "python -m bounce.pipeline.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "--out {output.nc} > {log} 2>&1"
 
 
 rule report:
@@ -62,7 +86,7 @@ rule report:
     sections, the errata, what goes beyond the paper)."""
     input:
         nc=[f"results/checks/{name}.nc" for name in CHECKS],
-        png=[f"results/checks/fig-{name}.png" for name in CHECKS],
+        png=[f"results/checks/fig-{name}.png" for name in CHECKS if name not in FIGURELESS],
         # every other figure, linked with the paper's figure it reproduces (bounce.pipeline.catalogue.pipeline_figures)
         figures=[f["path"] for f in PIPELINE_FIGURES],
     output:
@@ -74,7 +98,7 @@ rule report:
         # with their captions, and the choices the paper leaves open with the config values that make them
         spec=as_json(dict(config["report"], subject_order=list(config["report"]["subjects"]),
                           sections={k: dict(v, order=i) for i, (k, v) in enumerate(config["report"]["sections"].items())},
-                          choices=report_choices(config), figures=PIPELINE_FIGURES)),
+                          choices=report_choices(config), figures=PIPELINE_FIGURES, figureless=FIGURELESS)),
     resources:
         mem_mb=1000,
         runtime=10,

@@ -27,7 +27,8 @@ A module defines ``CHECK = Check(name, measure, CLAIMS, plot, title)``:
    label -> Verdict (one per scene); each verdict compares a measured number with the paper's
    expectation under a stated tolerance whose origin is said in ``tolerance`` (physics or a
    measured error budget, never "what passes"); ``not checkable`` says why in ``measured``.
-3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone.
+3. ``plot(ds, spec, outputs)`` draws the figure behind the verdicts from the dataset alone; a group whose evidence
+   is exact algebra has no figure (``plot`` None: no curve to draw, and the rows say all a table image would).
 4. every claim can fail: its :class:`Falsifier` doctors the inputs (records of a wrong law, a shifted parameter,
    the printed form in place of the corrected one) so that its verdict flips (:func:`falsify`, :func:`unflipped`);
    a claim no input could contradict is of kind ``identity`` and says why.
@@ -223,7 +224,7 @@ class Check:
     name: str
     measure: Callable
     claims: tuple
-    plot: Callable
+    plot: Callable | None
     title: str = ""
     experiments: tuple = ()
 

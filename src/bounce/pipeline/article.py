@@ -155,7 +155,7 @@ def section_page(title: str, sids: list, subjects: dict, reports, figures: list,
             lines += ["Errata of this subject (the text as printed): "
                       + ", ".join(f"[`{s}`](errata.md#{anchor(s)})" for s in errata) + ".", ""]
         paper_figs = [f for f in figures if f["paper"] and f["paper"].startswith(sid)]
-        groups = list({r.name: r for r, _ in mine}.values())
+        groups = list({r.name: r for r, _ in mine if r.figure}.values())
         if paper_figs or groups:
             lines += ["### Figures", ""]
         for f in paper_figs:
@@ -282,7 +282,7 @@ def write(check_files, figure_files, out_dir, subjects: dict, sections: dict, ch
     sections = dict(sorted(sections.items(), key=lambda kv: kv[1].get("order", 0)))  # as_json sorted the keys
     # the figures are referenced from the sources' folder; paths as given are relative to the working directory
     figs = [dict(f, path=os.path.abspath(f["path"])) for f in figures]
-    reports = [replace(r, figure=os.path.abspath(os.path.join(src, r.figure))) for r in reports]
+    reports = [replace(r, figure=os.path.abspath(os.path.join(src, r.figure)) if r.figure else "") for r in reports]
     info = _claims_info()
     names, beyond, subject_pages, page_of = [], [], [], {}
     for i, (sec_id, sec) in enumerate(sections.items(), 1):

@@ -41,7 +41,7 @@ KIND_TITLES = {"paper": "statements of the paper", "erratum": "errata (the text 
 class CheckReport:
     name: str
     title: str
-    figure: str  # path of the check's PNG, relative to the report
+    figure: str  # path of the check's PNG, relative to the report ("": the group has no figure)
     verdicts: list[Verdict]
     numbers: dict
 
@@ -62,7 +62,7 @@ def load(check_files, figure_files, report_dir) -> list[CheckReport]:
             ds.load()
         reports.append(CheckReport(
             name=Path(nc).stem, title=ds.attrs.get("title", Path(nc).stem),
-            figure=os.path.relpath(png, report_dir), verdicts=read_verdicts(ds), numbers=_numbers(ds),
+            figure=os.path.relpath(png, report_dir) if png else "", verdicts=read_verdicts(ds), numbers=_numbers(ds),
         ))
     return reports
 
@@ -237,9 +237,9 @@ def markdown(reports, subjects, meta: dict, figures=()) -> str:
         for v in r.verdicts:
             lines.append("| " + " | ".join(_md_cell(c) for c in (
                 f"`{v.claim_id}`", v.kind, v.claim, v.paper_ref, v.computed, v.expected, v.measured, v.tolerance)) +
-                f" | {BADGE[v.verdict]} | [{r.name}]({r.figure}) |")
+                f" | {BADGE[v.verdict]} | {f'[{r.name}]({r.figure})' if r.figure else '-'} |")
     for r in reports:
-        lines += ["", f"## {r.title} (`{r.name}`)", "", f"![{r.name}]({r.figure})", ""]
+        lines += ["", f"## {r.title} (`{r.name}`)", "", f"![{r.name}]({r.figure})" if r.figure else "(no figure)", ""]
         for v in r.verdicts:
             lines.append(f"* {BADGE[v.verdict]}: {v.claim} ({v.paper_ref}) - measured {v.measured}; "
                          f"expected {v.expected}; tolerance {v.tolerance}.")

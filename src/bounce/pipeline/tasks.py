@@ -53,7 +53,8 @@ def _check(args) -> None:
     ds = check.run(args.spec, [read_dataset(p) for p in args.inputs])
     ds.attrs.setdefault("check", args.name)
     write_netcdf(ds, args.out[0])
-    check.plot(ds, args.spec, args.out[1:])
+    if check.plot is not None:
+        check.plot(ds, args.spec, args.out[1:])
 
 
 def _check_experiment(args) -> None:
@@ -75,7 +76,9 @@ def _report(args) -> None:
     from ..io import git_info
     from . import article, report
 
-    figures = [str(Path(p).with_name(f"fig-{Path(p).stem}.png")) for p in args.inputs]
+    figureless = set(args.spec.get("figureless", []))
+    figures = [None if Path(p).stem in figureless else str(Path(p).with_name(f"fig-{Path(p).stem}.png"))
+               for p in args.inputs]
     subjects = report.ordered_subjects(args.spec)
     meta = {"title": args.spec.get("title", ""), "version": __version__, "commit": git_info()[0],
             "packages": article.package_versions()}
