@@ -85,14 +85,14 @@ def test_errata_are_counted_once_by_the_register():
                  ("g/p1", PAPER, REPRODUCED), ("g/p2", PAPER, REPRODUCED))
     reports = [CheckReport("g", "G", "fig-g.png", rows, {})]
     check_errata(reports)
-    counts = {k: (a, b, c) for k, a, b, c in kind_counts(reports)}
+    counts = {k: (a, b, c) for k, a, b, c, _ in kind_counts(reports)}
     assert counts[ERRATUM] == (0, 3, 1)  # factor 2, the two xi-lemma typos: 3 errata not reproduced; our-r: 1
     assert counts[PAPER] == (2, 0, 0)
     sev = {s: rest for s, *rest in severity_counts(reports)}
     assert sev["all"] == [len(REGISTER), 4, 6] and sum(sev[s][0] for s in SEVERITIES) == len(REGISTER)
     assert sev["typo"][1:] == [2, 1]  # two entries, one row
     text = "\n".join(kind_table_lines(reports))
-    assert "| errata (the text as printed; distinct errata, backed by 6 rows) | 0 | 3 | 1 |" in text
+    assert "| errata (the text as printed; distinct errata, backed by 6 rows) | 0 | 3 | 1 | 6 |" in text
     assert f"{len(REGISTER)} distinct errata" in text
 
 
@@ -114,6 +114,7 @@ def test_the_article_is_organised_by_the_paper_and_counts_statements(tmp_path, m
     one entry, linked by an anchor), a paper subject judged by the paper's statements only, counts of statements."""
     from bounce.checks.base import BEYOND
     from bounce.pipeline import article
+    from bounce.pipeline.report import kind_counts
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "checks").mkdir()
@@ -140,6 +141,6 @@ def test_the_article_is_organised_by_the_paper_and_counts_statements(tmp_path, m
     assert "reproduced" in page and "row-g-ours" in page  # the subject: reproduced from its paper statement alone
     assert (out / "extension.html").read_text().count('id="row-g-ours"') == 1
     assert any(p.suffix == ".png" for p in (out / "_images").iterdir())
-    counts = {k: (a, b, c, n) for k, a, b, c, n in article.statement_counts(article.load(
+    counts = {k: (a, b, c, n) for k, a, b, c, n in kind_counts(article.load(
         [tmp_path / "checks" / "g.nc"], [tmp_path / "checks" / "fig-g.png"], tmp_path))}
     assert counts[PAPER] == (1, 0, 1, 3) and counts[BEYOND] == (0, 1, 0, 1)

@@ -29,9 +29,10 @@ from collections import defaultdict
 from dataclasses import replace
 from pathlib import Path
 
-from ..checks.base import BEYOND, ERRATUM, IDENTITY, KINDS, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, SELF_TEST
-from ..checks._errata_register import REGISTER, SEVERITIES
-from .report import KIND_TITLES, ReportError, check_errata, check_subjects, erratum_entries, load, overall, rows
+from ..checks.base import BEYOND, ERRATUM, IDENTITY, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, SELF_TEST
+from ..checks._errata_register import SEVERITIES
+from .report import (KIND_TITLES, ReportError, check_errata, check_subjects, erratum_entries, kind_table_lines, load,
+                     overall, rows, statement_id, statements)
 
 BADGE = {REPRODUCED: "✅ reproduced", NOT_REPRODUCED: "❌ **not reproduced**", NOT_CHECKABLE: "➖ *not checkable*"}
 
@@ -46,42 +47,12 @@ def package_versions() -> dict:
     return {name: version(name) for name in PACKAGES}
 
 
-def statement_id(claim_id: str) -> str:
-    """``group/claim`` of a row ``group/claim[scene]``: the statement the row measures on one scene."""
-    return claim_id.split("[")[0]
-
-
 def anchor(claim_id: str) -> str:
     return "row-" + re.sub(r"[^a-z0-9]+", "-", statement_id(claim_id).lower()).strip("-")
 
 
 def subject_anchor(subject: str) -> str:
     return "subject-" + re.sub(r"[^a-z0-9]+", "-", subject.lower()).strip("-")
-
-
-def statements(verdicts) -> dict:
-    """statement id -> its rows (one per scene), in order of first appearance."""
-    out: dict = defaultdict(list)
-    for v in verdicts:
-        out[statement_id(v.claim_id)].append(v)
-    return dict(out)
-
-
-def statement_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int, int]]:
-    """(kind, statements reproduced, not reproduced, not checkable, their rows) per kind: a statement's verdict is
-    the overall verdict of its per-scene rows; errata count distinct register entries (their rows beside)."""
-    out = []
-    for kind in KINDS:
-        if kind == ERRATUM:
-            entries = [(verdict, len(mine)) for _, mine, verdict in erratum_entries(reports, register) if mine]
-            verdicts = [v for v, _ in entries]
-            n_rows = sum(v.kind == ERRATUM for v in rows(reports))
-        else:
-            mine = statements(v for v in rows(reports) if v.kind == kind)
-            verdicts = [overall(rs).split(" (")[0] for rs in mine.values()]
-            n_rows = sum(len(rs) for rs in mine.values())
-        out.append((kind, *(verdicts.count(w) for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE)), n_rows))
-    return out
 
 
 def _cell(text) -> str:
@@ -218,11 +189,8 @@ def index_page(reports, meta: dict, choices: list, page_names: list, beyond_page
              + ", ".join(f"{k} {v}" for k, v in meta.get("packages", {}).items()),
              "- the pipeline's wall and CPU time, per rule: `python benchmarks/bench_pipeline.py` (the README quotes a run)",
              "",
-             "## Counts", "",
-             "Statements, not rows: a statement measured on several scenes counts once, by the overall verdict of its "
-             "rows (not reproduced if any row is). Errata count distinct errors of the text.", "",
-             "| kind of claim | reproduced | not reproduced | not checkable | rows |", "|---|---|---|---|---|"]
-    lines += [f"| {KIND_TITLES[k]} | {a} | {b} | {c} | {n} |" for k, a, b, c, n in statement_counts(reports)]
+             "## Counts", ""]
+    lines += kind_table_lines(reports)
     lines += ["", "## Verdict per subject", "",
               "A subject of the paper is judged by the paper's statements that declare it (not reproduced if any is); "
               "our readings beyond it, self-tests, identities and errata never set it.", "",

@@ -49,8 +49,8 @@ def validation_lines(results: Path) -> list[str]:
         return ["- Validation: no `results/checks/*.nc` in this run."]
     reports = load(files, [f.with_name(f"fig-{f.stem}.png") for f in files], results / "report")
     check_errata(reports)
-    return ["Validation report (`results/report/validation.md`, from `results/checks/*.nc`; claims counted by rows, "
-            "errata once each):", "", *kind_table_lines(reports)]
+    return ["Validation (`results/report/article/index.html` and `results/report/validation.md`, from "
+            "`results/checks/*.nc`):", "", *kind_table_lines(reports)]
 
 
 def horizon_lines(results: Path) -> list[str]:

@@ -118,19 +118,33 @@ def erratum_entries(reports, register=REGISTER) -> list[tuple]:
     return out
 
 
-def kind_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int]]:
-    """(kind, reproduced, not reproduced, not checkable) for each kind of claim: rows for every kind but ``erratum``,
-    whose counts are of distinct errata (register entries checked by rows in this run, each counted once by the
-    overall verdict of its rows; the rows are counted by :func:`errata_rows`)."""
+def statement_id(claim_id: str) -> str:
+    """``group/claim`` of a row ``group/claim[scene]``: the statement the row measures on one scene."""
+    return claim_id.split("[")[0]
+
+
+def statements(verdicts) -> dict:
+    """statement id -> its rows (one per scene), in order of first appearance."""
+    out: dict = {}
+    for v in verdicts:
+        out.setdefault(statement_id(v.claim_id), []).append(v)
+    return out
+
+
+def kind_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int, int]]:
+    """(kind, reproduced, not reproduced, not checkable, rows) per kind of claim, counting statements, not rows: a
+    statement measured on several scenes counts once, by the overall verdict of its rows (:func:`overall`); errata
+    count distinct register entries checked by rows in this run, each once by the overall verdict of its rows.  The
+    last number is the rows behind the count."""
     all_rows = rows(reports)
-    entries = [verdict for _, mine, verdict in erratum_entries(reports, register) if mine]
     out = []
     for k in KINDS:
         if k == ERRATUM:
-            out.append((k, *(entries.count(w) for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE))))
+            verdicts = [verdict for _, mine, verdict in erratum_entries(reports, register) if mine]
         else:
-            out.append((k, *(sum(v.kind == k and v.verdict == w for v in all_rows)
-                             for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE))))
+            verdicts = [overall(rs).split(" (")[0] for rs in statements(v for v in all_rows if v.kind == k).values()]
+        out.append((k, *(verdicts.count(w) for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE)),
+                    sum(v.kind == k for v in all_rows)))
     return out
 
 
@@ -162,10 +176,11 @@ def kind_table_lines(reports, register=REGISTER) -> list[str]:
     """The markdown table of counts per kind (errata: distinct) and the errata by severity, for the report and the
     README (:mod:`bounce.pipeline.readme`)."""
     n_rows = errata_rows(reports)
-    lines = ["| kind of claim | reproduced | not reproduced | not checkable |", "|---|---|---|---|"]
-    for k, a, b, c in kind_counts(reports, register):
-        title = _kind_title(k, n_rows)
-        lines.append(f"| {title} | {a} | {b} | {c} |")
+    lines = ["Statements, not rows: a statement measured on several scenes counts once, by the overall verdict of its "
+             "rows (not reproduced if any row is); errata count distinct errors of the text.", "",
+             "| kind of claim | reproduced | not reproduced | not checkable | rows |", "|---|---|---|---|---|"]
+    for k, a, b, c, n in kind_counts(reports, register):
+        lines.append(f"| {_kind_title(k, n_rows)} | {a} | {b} | {c} | {n} |")
     sev = severity_counts(reports, register)
     total = sev[-1]
     lines += ["", f"Errata register (`src/bounce/checks/_errata_register.py`): {total[1]} distinct errata of the text as "
