@@ -42,3 +42,19 @@ def test_upper_mass_oscillates_only_below_sqrt2():
     corrected = errata.upper_mass_row(None, sp, lambda mu: mu < math.sqrt(2), "mu < sqrt 2")
     assert corrected.verdict == REPRODUCED
     assert errata.main_thm_upper_mass(None, _spec(upper_mass_mu=[0.3, 1.0])).verdict == REPRODUCED
+
+
+def test_z_constraint_checks_states_on_and_above_the_boundary():
+    """eq. z-constraint's row takes half its states above the boundary (the draws in [-3 gamma, 3 gamma] all fall below
+    it): x''(0) = (z - z_bnd)/2 is then tested off the boundary too, where a run 1 % heavier is caught."""
+    v = errata.z_constraint(errata.Measurements(_spec()), _spec())
+    assert v.verdict == REPRODUCED and "on the boundary: 4 states" in v.measured
+
+
+def test_xi_lemma_typos_is_judged_on_the_run():
+    """The typos' row reads the run (xi'(0) and the side of +-gamma xi tends to): the printed lines fail on the
+    asymptotic run, and hold on its records written with xi of the opposite sign, started at xi'(0) = 0."""
+    ds = errata.CHECK.experiment(errata.ASYMPTOTIC_RUN).dataset(_spec())
+    assert errata.xi_lemma_typos(errata.Measurements(_spec(), [ds]), _spec()).verdict == NOT_REPRODUCED
+    doctored = errata._xi_printed_convention(ds.copy(deep=True))
+    assert errata.xi_lemma_typos(errata.Measurements(_spec(), [doctored]), _spec()).verdict == REPRODUCED

@@ -25,7 +25,7 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from .base import ERRATUM, PAPER, Check, Verdict, judge, recorded, variable
+from .base import ERRATUM, PAPER, Check, Falsifier, Verdict, judge, recorded, variable
 
 NAME = "appendix"
 
@@ -76,6 +76,20 @@ def iterate_alpha_map(alpha0, b):
     return exit_at, a, violations
 
 
+def giorgio2_step(x, c):
+    """x_{n+1} = x_n + c_n x_n^2, the sequences of lem:Giorgio's-2 (|c_n| <= c)."""
+    return x + c * x * x
+
+
+#: the proof's comparison tested exactly: (x_0, x_1) with x_0 = 9/10 > 1/(2c), c = 1; x_2 = x_1 - c x_1^2
+COMPARISON_START = (Fraction(9, 10), Fraction(19, 20))
+
+
+def giorgio_remainder(x):
+    """The o(x_n^2) term of the map of lem:Giorgio's iterated here: x_n^3."""
+    return x**3
+
+
 def measure(spec: dict, inputs=()) -> SimpleNamespace:
     rows: dict[str, Verdict] = {}
     data = {}
@@ -112,10 +126,10 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         expected="every sequence leaves (0, 1) or ends below sqrt(max_{n >= N/2} |b_n|); no violation of the "
                  "monotone step",
         measured=f"{int(np.sum(exits < n_it))} of {exits.size} sequences leave (0, 1) (the last at step "
-                 f"{int(exits[exits < n_it].max()) if np.any(exits < n_it) else -1}; with b = 0 all {alpha0.size} "
-                 f"leave by step {int(exits[0].max())}: no fixed point); {stayed} stay, {stayed_far} of them above the "
-                 f"bound; {violations} violations. A sequence that stays exists (alpha_n = 1/(n+2) with b_n -> 0: "
-                 f"|b_N| = {abs(b_seq[-1]):.2g}) and tends to 0",
+                 f"{int(exits[exits < n_it].max()) if np.any(exits < n_it) else -1}; with b = 0 "
+                 f"{int(np.sum(exits[0] < n_it))} of {alpha0.size} leave, by step {int(exits[0].max())}: no fixed point "
+                 f"if all); {stayed} stay, {stayed_far} of them above the bound; {violations} violations. A sequence "
+                 f"that stays exists (alpha_n = 1/(n+2) with b_n -> 0: |b_N| = {abs(b_seq[-1]):.2g}) and tends to 0",
         tolerance="exact counts (the monotone step is compared in float64 away from ties: violations would be "
                   "steps going down by more than rounding)",
         verdict=judge(stayed_far == 0 and violations == 0 and abs(b_seq[-1]) < abs(b_seq[0])))
@@ -136,7 +150,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
     for n in range(1, n2 + 1):
         sums += xs
         cn = rng.uniform(-c, 0.0, xs.size)  # |c_n| <= c; c_n > 0 only helps the divergence
-        xs = xs + cn * xs * xs
+        xs = giorgio2_step(xs, cn)
         zs = zs - c * zs * zs
         below_z += int(np.sum(xs < zs))
         if n in checkpoints:
@@ -159,7 +173,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
 
     # the printed comparison, exactly: c = 1, x_0 = 9/10 > 1/(2c)
     cq = Fraction(1)
-    x_seq = [Fraction(9, 10), Fraction(19, 20)]
+    x_seq = list(COMPARISON_START)
     x_seq.append(x_seq[1] - cq * x_seq[1] ** 2)
     z_seq = [x_seq[0]]
     for _ in range(2):
@@ -170,8 +184,8 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
         claim="In the proof of Lemma Giorgio's-2: x_{n+1} >= x_n - c x_n^2 and z_{n+1} = z_n - c z_n^2, z_0 = x_0 give "
               "x_n >= z_n for all n >= 0",
         paper_ref="proof of lem:Giorgio's-2",
-        computed="exact rationals: c = 1, x = (9/10, 19/20, 19/20 - (19/20)^2), which obey |x_{n+1} - x_n| <= c x_n^2 "
-                 "and x_n > 0; z from the comparison map",
+        computed=f"exact rationals: c = 1, x = ({x_seq[0]}, {x_seq[1]}, {x_seq[1]} - ({x_seq[1]})^2), which obey "
+                 "|x_{n+1} - x_n| <= c x_n^2 and x_n > 0; z from the comparison map",
         expected="x_n >= z_n for n = 0, 1, 2 as printed",
         measured=f"x = {[str(v) for v in x_seq]}, z = {[str(v) for v in z_seq]}: hypotheses hold ({hyp}), x_n < z_n at "
                  f"n = {broken}. Erratum: the step needs z -> z - c z^2 increasing on the values taken (x_n, z_n <= "
@@ -186,7 +200,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
     marks = {n1 // 100: 0.0, n1: 0.0}
     for n in range(1, n1 + 1):  # plain loop: the map itself
         a_n = a_lim * (1 + 1 / math.sqrt(n))
-        x = x - a_n * x * x + x**3
+        x = x - a_n * x * x + giorgio_remainder(x)
         if n in marks:
             marks[n] = n * x * a_lim
     errs = {n: abs(v - 1) for n, v in marks.items()}
@@ -206,14 +220,22 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
 
 
 CLAIMS: list = []
-for _id, _kind, _subject, _wrong in (
-    ("alpha-map-conclusion", PAPER, "lem:alpha-map", ""),
-    ("giorgio2-divergence", PAPER, "lem:Giorgio's-2", ""),
+for _id, _kind, _subject, _wrong, _falsifier in (
+    ("alpha-map-conclusion", PAPER, "lem:alpha-map", "",
+     Falsifier("eq. g's numerator 10 % low (0.9 (6x - 8x^2 + 3x^3)): f = g at an alpha* in (0, 1) and the monotone "
+               "step fails below it", patch=lambda: {"g_map": lambda x, g=g_map: 0.9 * g(x)})),
+    ("giorgio2-divergence", PAPER, "lem:Giorgio's-2", "",
+     Falsifier("the sequences x_{n+1} = x_n + c_n x_n^1.8 (exponent 0.2 below the hypothesis: summable)",
+               patch=lambda: {"giorgio2_step": lambda x, c: x + c * x**1.8})),
     ("giorgio2-comparison", ERRATUM, "lem:Giorgio's-2",
-     "x_n >= z_n for all n needs x_n <= 1/(2c); fails for x_0 > 1/(2c) (the lemma itself holds)"),
-    ("giorgio-varying-alpha", PAPER, "lem:Giorgio's", ""),
+     "x_n >= z_n for all n needs x_n <= 1/(2c); fails for x_0 > 1/(2c) (the lemma itself holds)",
+     Falsifier("a sequence on which the print holds: x = (2/5, 9/20, ...), below 1/(2c) where z -> z - c z^2 increases",
+               patch=lambda: {"COMPARISON_START": (Fraction(2, 5), Fraction(9, 20))})),
+    ("giorgio-varying-alpha", PAPER, "lem:Giorgio's", "",
+     Falsifier("the remainder 0.1 x_n^2 (O(x_n^2), not o: n x_n alpha -> alpha/(alpha - 0.1) = 1.25) in place of x_n^3",
+               patch=lambda: {"giorgio_remainder": lambda x: 0.1 * x * x})),
 ):
-    recorded(CLAIMS, _id, _kind, _subject, _wrong)
+    recorded(CLAIMS, _id, _kind, _subject, _wrong, falsifier=_falsifier)
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
