@@ -449,6 +449,12 @@ def xidot2_jump(m, spec) -> Verdict:
         abs(jump_xi2 - expect_xi2) <= 1e-5 * abs(expect_xi2))
 
 
+#: the largest Richardson error (10 x its step, relative to gamma) at which the row resolves x'''': at a sticky onset
+#: the extrapolation from h = 1e-3 settles to ~6e-4 gamma (its step; the value itself lands within 1e-8 of -gamma);
+#: a flight off the onset (x''' != 0) leaves errors of order 1e4 gamma, which no tolerance may absorb
+X4_RESOLUTION = 1e-3
+
+
 @claim(CLAIMS, "x4-at-sticky-onset", PAPER, "lem:Min-sticky-energy",
        falsifier=Falsifier("the free flight (mpmath) of a run 1 % heavier than stated (gamma and the state x 1.01)",
                            patch=_flight_heavier(1.01)))
@@ -460,12 +466,15 @@ def x4_at_sticky_onset(m, spec) -> Verdict:
         x4, x4err = richardson_derivative(lambda t: reference.free_flight(gs, ms, 0, 0, a0, e0, t).x, 4, 1e-3)
         x3, _ = richardson_derivative(lambda t: reference.free_flight(gs, ms, 0, 0, a0, e0, t).x, 3, 1e-5)
         x4, x4err, x3 = float(x4), float(x4err), float(x3)
-    return _row(
-        "x'''(t_s) = 0 at a sticky onset implies x''''(t_s) = -gamma", "sec. 3 (after eq. sticky-condition)",
-        f"free flight (mpmath, 50 digits) from x = xdot = x'' = x''' = 0 (Ydot = 4 mu gamma), gamma = {gs}, mu = {ms}: "
-        "24 x(t)/t^4 with Richardson extrapolation",
-        f"-gamma = {-gs}", f"x'''' = {x4:.10g} (x''' = {x3:.2g})", f"relative 10 x Richardson step {10 * x4err / gs:.1g}",
-        abs(x4 + gs) <= max(10 * x4err, 1e-12 * gs))
+    text = ("x'''(t_s) = 0 at a sticky onset implies x''''(t_s) = -gamma", "sec. 3 (after eq. sticky-condition)",
+            f"free flight (mpmath, 50 digits) from x = xdot = x'' = x''' = 0 (Ydot = 4 mu gamma), gamma = {gs}, "
+            f"mu = {ms}: 24 x(t)/t^4 with Richardson extrapolation", f"-gamma = {-gs}",
+            f"x'''' = {x4:.10g} (x''' = {x3:.2g})")
+    if 10 * x4err > X4_RESOLUTION * gs:  # the extrapolation did not settle: a tolerance that wide could not fail
+        return Verdict(*text, f"10 x the Richardson error, {10 * x4err:.2g}, exceeds {X4_RESOLUTION:g} gamma: "
+                       "not resolved", base.NOT_CHECKABLE)
+    return _row(*text, f"relative 10 x Richardson step {10 * x4err / gs:.1g} (resolved: below {X4_RESOLUTION:g})",
+                abs(x4 + gs) <= max(10 * x4err, 1e-12 * gs))
 
 
 @claim(CLAIMS, "sticky-energy", PAPER, "lem:Min-sticky-energy",
