@@ -144,3 +144,17 @@ def test_the_article_is_organised_by_the_paper_and_counts_statements(tmp_path, m
     counts = {k: (a, b, c, n) for k, a, b, c, n in kind_counts(article.load(
         [tmp_path / "checks" / "g.nc"], [tmp_path / "checks" / "fig-g.png"], tmp_path))}
     assert counts[PAPER] == (1, 0, 1, 3) and counts[BEYOND] == (0, 1, 0, 1)
+
+
+def test_claims_that_test_one_statement_count_once():
+    """Claims that declare one paper statement (Claim.statement: the drops, the atlas, the proof's identities) count
+    once, by the overall verdict of all their rows; the rows are all counted beside."""
+    from bounce.pipeline.report import CheckReport, kind_counts
+
+    rows = [Verdict("c", "ref", "comp", "e", "m", "t", verdict, claim_id=cid, kind=PAPER, subject="lem:a",
+                    statement=statement)
+            for cid, verdict, statement in (("g/limit[ud]", REPRODUCED, "S"), ("g/limit[od]", REPRODUCED, "S"),
+                                            ("g/atlas-limit", NOT_CHECKABLE, "S"), ("h/limit", NOT_REPRODUCED, "T"),
+                                            ("g/other", REPRODUCED, ""))]
+    counts = {k: (a, b, c, n) for k, a, b, c, n in kind_counts([CheckReport("g", "G", "", rows, {})])}
+    assert counts[PAPER] == (2, 1, 0, 5)  # S reproduced (one part not checkable), T not, g/other reproduced

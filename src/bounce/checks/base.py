@@ -13,6 +13,9 @@ list, each returning one verdict (or one per input scene), with what the claim *
   ``report.subjects``); the report groups by it;
 * ``known_failure``: why the verdict is expected to be ``not reproduced`` (an erratum, or a
   statement of the paper the dynamics contradicts), empty otherwise.  Tests read it;
+* ``statement``: when several claims (of one group or several) test one statement of the paper, the key they share
+  (e.g. ``Xddot-limit``: on the drops, over the atlas, through the proof's identities); the report counts the
+  statement once;
 * ``falsifier``: a :class:`Falsifier`, the perturbation of the claim's inputs under which its verdict
   must flip (every kind but ``identity`` declares one; tests/checks/test_claims.py::test_falsifier_flips
   runs each, and fails when the verdict stays).
@@ -87,6 +90,7 @@ class Verdict:
     claim_id: str = ""
     kind: str = ""
     subject: str = ""
+    statement: str = ""  # the paper statement several claims test together ("" = the claim's own id)
 
     def __post_init__(self) -> None:
         if self.verdict not in VERDICTS:
@@ -134,6 +138,7 @@ class Claim:
     known_failure: str = ""
     falsifier: Falsifier | None = None
     why_identity: str = ""
+    statement: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -148,23 +153,23 @@ class Claim:
 
 
 def claim(registry: list, id: str, kind: str, subject: str, known_failure: str = "",
-          falsifier: Falsifier | None = None, why_identity: str = "") -> Callable:
+          falsifier: Falsifier | None = None, why_identity: str = "", statement: str = "") -> Callable:
     """Decorator: append the function as a :class:`Claim` to ``registry`` (the module's ``CLAIMS``)."""
     def add(fn):
-        registry.append(Claim(id, kind, subject, fn, known_failure, falsifier, why_identity))
+        registry.append(Claim(id, kind, subject, fn, known_failure, falsifier, why_identity, statement))
         return fn
     return add
 
 
 def recorded(registry: list, id: str, kind: str, subject: str, known_failure: str = "",
-             falsifier: Falsifier | None = None, why_identity: str = "") -> None:
+             falsifier: Falsifier | None = None, why_identity: str = "", statement: str = "") -> None:
     """A declarative claim: its verdict row is recorded by the group's measurement in ``m.rows[id]`` (a Verdict, or
     a dict label -> Verdict; absent: no row).  For groups whose formulas share one computation step by step."""
     def from_measurement(m, spec):
         return m.rows.get(id, {})
     from_measurement.__name__ = id.replace("-", "_")
     from_measurement.__module__ = sys._getframe(1).f_globals["__name__"]
-    registry.append(Claim(id, kind, subject, from_measurement, known_failure, falsifier, why_identity))
+    registry.append(Claim(id, kind, subject, from_measurement, known_failure, falsifier, why_identity, statement))
 
 
 #: the most events one simulate() call inside a claim may follow (a constructed probe); longer runs are
@@ -244,7 +249,7 @@ class Check:
             labelled = out.items() if isinstance(out, dict) else [(None, out)]
             for label, v in labelled:
                 cid = f"{self.name}/{c.id}" + (f"[{label}]" if label is not None else "")
-                rows.append(replace(v, claim_id=cid, kind=c.kind, subject=c.subject))
+                rows.append(replace(v, claim_id=cid, kind=c.kind, subject=c.subject, statement=c.statement))
         return rows
 
     def run(self, spec: dict, inputs) -> xr.Dataset:
@@ -362,7 +367,8 @@ def verdict_dataset(verdicts: list[Verdict], data: xr.Dataset | None = None, tit
 def read_verdicts(ds: xr.Dataset) -> list[Verdict]:
     """The verdict rows stored by :func:`verdict_dataset`."""
     n = ds.sizes.get("claim", 0)
-    return [Verdict(**{f.name: str(ds[f"verdict_{f.name}"].values[i]) for f in fields(Verdict)}) for i in range(n)]
+    stored = [f.name for f in fields(Verdict) if f"verdict_{f.name}" in ds]  # files written before a field existed
+    return [Verdict(**{name: str(ds[f"verdict_{name}"].values[i]) for name in stored}) for i in range(n)]
 
 
 def as_dict(v: Verdict) -> dict:

@@ -123,17 +123,19 @@ def statement_id(claim_id: str) -> str:
     return claim_id.split("[")[0]
 
 
-def statements(verdicts) -> dict:
-    """statement id -> its rows (one per scene), in order of first appearance."""
+def statements(verdicts, counted: bool = False) -> dict:
+    """claim id -> its rows (one per scene), in order of first appearance; ``counted``: grouped by the paper statement
+    the claims declare they test together (:attr:`bounce.checks.base.Claim.statement`), else by claim."""
     out: dict = {}
     for v in verdicts:
-        out.setdefault(statement_id(v.claim_id), []).append(v)
+        out.setdefault((counted and v.statement) or statement_id(v.claim_id), []).append(v)
     return out
 
 
 def kind_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int, int]]:
     """(kind, reproduced, not reproduced, not checkable, rows) per kind of claim, counting statements, not rows: a
-    statement measured on several scenes counts once, by the overall verdict of its rows (:func:`overall`); errata
+    statement measured on several scenes, or by several claims that declare it (``Claim.statement``), counts once, by
+    the overall verdict of its rows (:func:`overall`); errata
     count distinct register entries checked by rows in this run, each once by the overall verdict of its rows.  The
     last number is the rows behind the count."""
     all_rows = rows(reports)
@@ -142,7 +144,8 @@ def kind_counts(reports, register=REGISTER) -> list[tuple[str, int, int, int, in
         if k == ERRATUM:
             verdicts = [verdict for _, mine, verdict in erratum_entries(reports, register) if mine]
         else:
-            verdicts = [overall(rs).split(" (")[0] for rs in statements(v for v in all_rows if v.kind == k).values()]
+            verdicts = [overall(rs).split(" (")[0]
+                        for rs in statements((v for v in all_rows if v.kind == k), counted=True).values()]
         out.append((k, *(verdicts.count(w) for w in (REPRODUCED, NOT_REPRODUCED, NOT_CHECKABLE)),
                     sum(v.kind == k for v in all_rows)))
     return out
@@ -176,8 +179,8 @@ def kind_table_lines(reports, register=REGISTER) -> list[str]:
     """The markdown table of counts per kind (errata: distinct) and the errata by severity, for the report and the
     README (:mod:`bounce.pipeline.readme`)."""
     n_rows = errata_rows(reports)
-    lines = ["Statements, not rows: a statement measured on several scenes counts once, by the overall verdict of its "
-             "rows (not reproduced if any row is); errata count distinct errors of the text.", "",
+    lines = ["Statements, not rows: a statement measured on several scenes, or by several claims, counts once, by the "
+             "overall verdict of its rows (not reproduced if any row is); errata count distinct errors of the text.", "",
              "| kind of claim | reproduced | not reproduced | not checkable | rows |", "|---|---|---|---|---|"]
     for k, a, b, c, n in kind_counts(reports, register):
         lines.append(f"| {_kind_title(k, n_rows)} | {a} | {b} | {c} | {n} |")
