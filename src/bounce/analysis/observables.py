@@ -36,6 +36,11 @@ QUANTITY_CLAIMS = {
     "map": ("(Xdot_n - Xdot_{n+1})/Xdot_n^2 -> mu/(3 gamma)", "eq. restituzione (eq. mappa, alpha_n)"),
 }
 
+#: the statement of the paper each quantity's limit is (bounce.checks.base.Claim.statement): the claims that test it
+#: on the drops, over the atlas and through the proof's identities share it, and the report counts it once
+QUANTITY_STATEMENTS = {q: f"main_thm:{q}-limit" for q in QUANTITY_CLAIMS}
+
+
 def scaled_quantities(n, tau_n, xdot_n, xdot_next, xidot_n, eta_n, gamma, mu) -> dict:
     """The six q_n (all -> 1 by the theorem) from per-impact arrays in paper indexing."""
     xdd, xddd = contact_derivatives(xidot_n, eta_n, gamma, mu)
