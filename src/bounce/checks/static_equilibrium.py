@@ -148,7 +148,6 @@ RATES = {  # quantity -> (label, what the rate is)
 }
 
 
-
 # --------------------------------------------------------------------------- falsifiers (contract, point 4)
 
 def _energy_bump(ds):
