@@ -63,10 +63,24 @@ import numpy as np
 import xarray as xr
 
 from ..analysis.fitting import fit_limit, log_select, transient_length
-from ..analysis import theory
+from ..analysis import observables, theory
 from ..analysis.observables import QUANTITIES, QUANTITY_CLAIMS, QUANTITY_LABELS, dataset_series, series_quantities
 from ..analysis.theory import contact_derivatives, correction_exponent
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, judge_every, split_inputs
+from .base import (
+    BEYOND,
+    ERRATUM,
+    NOT_CHECKABLE,
+    PAPER,
+    Check,
+    Falsifier,
+    Verdict,
+    claim,
+    judge,
+    judge_every,
+    on_named,
+    on_scenes,
+    split_inputs,
+)
 
 NAME = "main-theorem"
 
@@ -165,6 +179,108 @@ def measure(spec: dict, inputs: list) -> Measurements:
     return Measurements(spec, inputs)
 
 
+# --------------------------------------------------------------------------- falsifiers (contract, point 4)
+#
+# A thinned scene restarts the exact solver from its stored states for the flights after them
+# (bounce.analysis.observables.dataset_series): a doctored tau_n or Xdot_(n+1) is replaced there by the true flight,
+# so a wrong flight law or map cannot be written into the records.  Rows that read those two are falsified by
+# patching the series the fits read (stored and restarted records alike, ``_series_of``); rows that read only the
+# stored state (Xdot_n, xi'_n, eta_n), the scene's parameters or the atlas's fits, by doctoring the inputs.
+
+def _damping_high(ds):
+    """The scene's records labelled with a damping 2 % above the one simulated."""
+    ds.attrs["mu"] = 1.02 * float(ds.attrs["mu"])
+    return ds
+
+
+def _spring_low(ds):
+    """The spring's offset eta = xi + gamma at every record 0.04 gamma low (Xddot_n -> -2.04 gamma, Xdddot_n ->
+    2.08 mu gamma)."""
+    ds["eta"] = ds["eta"] - 0.04 * float(ds.attrs["gamma"])
+    return ds
+
+
+def _series_of(law):
+    """A falsifier's patch: every scene's per-impact series (bounce.analysis.observables.dataset_series, the
+    restarted flights included) passed through ``law(s) -> s``."""
+    return lambda: {"dataset_series": lambda ds: law(observables.dataset_series(ds))}
+
+
+def _flights_long(s):
+    """Flights 2 % longer than the records' (n tau_n mu/3 -> 1.02, Xdot_n/tau_n -> gamma/1.02)."""
+    return {**s, "tau": 1.02 * s["tau"]}
+
+
+def _map_lossier(s):
+    """Xdot_(n+1) from eq. restituzione with a loss 2 % larger: Xdot_n - 1.02 (Xdot_n - Xdot_(n+1))."""
+    return {**s, "xdot_next": s["xdot"] - 1.02 * (s["xdot"] - s["xdot_next"])}
+
+
+def _correction_faster(s):
+    """The correction of n tau_n mu/3 decaying like n^-(p_th + 0.25) instead of n^-p_th (equal at n = 1000)."""
+    q = s["n"] * s["tau"] * s["mu"] / 3.0
+    return {**s, "tau": s["tau"] * (1.0 + (q - 1.0) * ((s["n"] / 1000.0) ** -0.25 - 1.0) / q)}
+
+
+def _printed_flights(s):
+    """Flights obeying the proof's printed Xdot_n/tau_n = -Xddot_n/2 + Xdddot_n tau_n: tau_n its positive root (nan
+    in the transient, where Xdddot_n < 0 leaves none)."""
+    xdd, xddd = contact_derivatives(s["xidot"], s["eta"], s["gamma"], s["mu"])
+    with np.errstate(invalid="ignore"):
+        root = np.sqrt(0.25 * xdd * xdd + 4.0 * xddd * s["xdot"])
+    return {**s, "tau": 2.0 * s["xdot"] / (-0.5 * xdd + root)}
+
+
+def _one_flight_law(s):
+    """Flights of one law for every damping, tau_n ~ 3/n (the printed 'independent of mu'): tau_n times mu."""
+    return {**s, "tau": s["tau"] * s["mu"]}
+
+
+def _atlas_one_flight_law(ds):
+    """The atlas's fits of n tau_n mu/3 for flights tau_n ~ 3/n in every cell: limit and error times mu."""
+    for key in ("limit", "limit_err"):
+        ds[key].loc[{"quantity": "tau"}] = ds[key].sel(quantity="tau") * ds["mu"]
+    return ds
+
+
+def _atlas_limit_high(q: str):
+    """The atlas's fitted limit of q_n 2 % high in every cell (a law off by 2 %)."""
+    def doctor(ds):
+        ds["limit"].loc[{"quantity": q}] = 1.02 * ds["limit"].sel(quantity=q)
+        return ds
+    return doctor
+
+
+def _atlas_exponent_high(ds):
+    """The atlas's decay exponents of n tau_n mu/3 - L 0.1 above the fitted ones in every cell."""
+    ds["exponent"].loc[{"quantity": "tau"}] = ds["exponent"].sel(quantity="tau") + 0.1
+    return ds
+
+
+def _third_derivative_doubled():
+    """Sec. 5's eq. asympt-4ord with X'''_n = 2 gamma T_n (twice its leading term), the other eqs. as derived."""
+    wrong = SimpleNamespace(**{k: getattr(theory, k) for k in dir(theory) if not k.startswith("_")})
+    wrong.asympt_4ord = lambda g, T: (-g * T**2 / 2, 2 * g * T, -g)
+    return {"theory": wrong}
+
+
+_RESTARTS = " patched into the series (a thinned record restarts its flights from the stored states)"
+LIMIT_FALSIFIERS = {
+    "tau": Falsifier("flights 2 % longer than the records' (tau_n ~ 3.06/(mu n))," + _RESTARTS,
+                     patch=_series_of(_flights_long)),
+    "xdot": Falsifier("records labelled with a damping 2 % above the simulated one: n Xdot_n mu/(3 gamma) -> 1.02 "
+                      "(a doctored record: Xdot_n is stored)", on_scenes(_damping_high)),
+    "ratio": Falsifier("flights 2 % longer than the records' (Xdot_n/tau_n -> gamma/1.02)," + _RESTARTS,
+                       patch=_series_of(_flights_long)),
+    "xddot": Falsifier("the spring's offset eta at every record 0.04 gamma low: Xddot_n -> -2.04 gamma",
+                       on_scenes(_spring_low)),
+    "xdddot": Falsifier("the spring's offset eta at every record 0.04 gamma low: Xdddot_n -> 2.08 mu gamma",
+                        on_scenes(_spring_low)),
+    "map": Falsifier("eq. restituzione with a loss 2 % larger, Xdot_(n+1) = Xdot_n - 1.02 (mu/(3 gamma)) Xdot_n^2,"
+                     + _RESTARTS, patch=_series_of(_map_lossier)),
+}
+
+
 CLAIMS: list = []
 SUBJECT = "thm:main_thm"
 
@@ -180,10 +296,14 @@ def _limit_claim(q: str):
 
 
 for _q in QUANTITIES:
-    claim(CLAIMS, f"{_q}-limit", PAPER, SUBJECT)(_limit_claim(_q))
+    claim(CLAIMS, f"{_q}-limit", PAPER, SUBJECT, falsifier=LIMIT_FALSIFIERS[_q])(_limit_claim(_q))
 
 
-@claim(CLAIMS, "section-5-collapse-cases", PAPER, SUBJECT)
+@claim(CLAIMS, "section-5-collapse-cases", PAPER, SUBJECT,
+       falsifier=Falsifier("eq. asympt-4ord with X'''_n = 2 gamma T_n (twice its leading term); the row limsup-two-thirds "
+                           "reads eq. strange-combination alone (Xdddot(zeta_n) = Q given there) and is left",
+                           patch=_third_derivative_doubled,
+                           labels=("xdot-gamma-T2-tau", "limit-two-thirds", "tau-bar-exceeds-T")))
 def section_5_collapse_cases(m, spec) -> dict:
     """Sec. 5's asymptotics of a hypothetical collapse (cases Xddot_inf = 0), evaluated along alpha_n = tau_n/T_n -> 0.
 
@@ -254,7 +374,9 @@ def section_5_collapse_cases(m, spec) -> dict:
     return rows
 
 
-@claim(CLAIMS, "tau-decay-exponent", BEYOND, SUBJECT)
+@claim(CLAIMS, "tau-decay-exponent", BEYOND, SUBJECT,
+       falsifier=Falsifier("the correction of n tau_n mu/3 decaying like n^-(p_th + 0.25)," + _RESTARTS,
+                           patch=_series_of(_correction_faster)))
 def tau_decay_exponent(m, spec) -> dict:
     out = {}
     for sc in m.scenes:
@@ -291,7 +413,9 @@ def _coefficient_rows(m, spec):
 
 @claim(CLAIMS, "printed-coefficient", ERRATUM, SUBJECT,
        known_failure="the proof prints Xdot_n/tau_n = -Xddot_n/2 + x'''(zeta_n) tau_n; eq. xddot-tau gives "
-                     "-x'''(zeta_n) tau_n/6")
+                     "-x'''(zeta_n) tau_n/6",
+       falsifier=Falsifier("flights obeying the printed relation (tau_n its positive root: c = +1)," + _RESTARTS,
+                           patch=_series_of(_printed_flights)))
 def printed_coefficient_claim(m, spec) -> Verdict:
     comp, tol, ok, ksig = _coefficient_rows(m, spec)
     meas = "; ".join(f"{sc.name}: c = {sc.coeff:.6f} +- {sc.coeff_err:.1g}" for sc, good in zip(m.scenes, ok) if good)
@@ -303,7 +427,9 @@ def printed_coefficient_claim(m, spec) -> Verdict:
         if any(ok) else NOT_CHECKABLE)
 
 
-@claim(CLAIMS, "corrected-coefficient", BEYOND, SUBJECT)
+@claim(CLAIMS, "corrected-coefficient", BEYOND, SUBJECT,
+       falsifier=Falsifier("flights obeying the proof's printed Xdot_n/tau_n = -Xddot_n/2 + x'''(zeta_n) tau_n (tau_n "
+                           "its positive root: c = +1)," + _RESTARTS, patch=_series_of(_printed_flights)))
 def corrected_coefficient(m, spec) -> Verdict:
     comp, tol, ok, ksig = _coefficient_rows(m, spec)
     return Verdict(
@@ -361,7 +487,10 @@ def mu_dependence_row(m, spec, scale, stated: str) -> Verdict:
 @claim(CLAIMS, "asymptotics-independent-of-mu", ERRATUM, SUBJECT,
        known_failure="sec. 8.1 says the asymptotics of Theorem main_thm are independent of mu; tau_n ~ 3/(mu n) and "
                      "Xdot_n ~ 3 gamma/(mu n) depend on mu (what does not depend on mu is that they hold, for "
-                     "under- and over-damped springs alike)")
+                     "under- and over-damped springs alike)",
+       falsifier=Falsifier("flights of one law tau_n ~ 3/n for every mu (the printed form): the scenes' flights times "
+                           "mu," + _RESTARTS + ", and the atlas's fits of n tau_n mu/3 times mu",
+                           on_named(ATLAS, _atlas_one_flight_law), patch=_series_of(_one_flight_law)))
 def asymptotics_independent_of_mu(m, spec) -> Verdict:
     return mu_dependence_row(m, spec, lambda mu: 1.0, "lim n tau_n the same for every mu, as printed")
 
@@ -400,7 +529,9 @@ def _atlas_limit_claim(q: str):
 
 
 for _q in QUANTITIES:
-    claim(CLAIMS, f"atlas-{_q}-limit", PAPER, SUBJECT)(_atlas_limit_claim(_q))
+    claim(CLAIMS, f"atlas-{_q}-limit", PAPER, SUBJECT,
+          falsifier=Falsifier(f"the atlas's fitted limit of q_n = {_q} 2 % high in every cell",
+                              on_named(ATLAS, _atlas_limit_high(_q))))(_atlas_limit_claim(_q))
 
 
 def _atlas_exponent_claim(slow: bool):
@@ -436,8 +567,10 @@ def _atlas_exponent_claim(slow: bool):
     return judge_exponent
 
 
-claim(CLAIMS, "atlas-exponent-slow-spring", BEYOND, SUBJECT)(_atlas_exponent_claim(True))
-claim(CLAIMS, "atlas-exponent-map", BEYOND, SUBJECT)(_atlas_exponent_claim(False))
+_EXPONENT_HIGH = Falsifier("the atlas's decay exponents of n tau_n mu/3 - L 0.1 above the fitted ones in every cell",
+                           on_named(ATLAS, _atlas_exponent_high))
+claim(CLAIMS, "atlas-exponent-slow-spring", BEYOND, SUBJECT, falsifier=_EXPONENT_HIGH)(_atlas_exponent_claim(True))
+claim(CLAIMS, "atlas-exponent-map", BEYOND, SUBJECT, falsifier=_EXPONENT_HIGH)(_atlas_exponent_claim(False))
 
 
 def _dataset(m: Measurements, spec: dict) -> xr.Dataset:

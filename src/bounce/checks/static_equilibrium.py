@@ -22,6 +22,12 @@ w'' + mu w' + w/2 = 0 (eq. y-eq-sticky) at the slow rate lam (mu/2 if mu^2 < 2, 
 
 and for mu^2 < 2 the prefactor n^2 (E - E_m) -> 9 gamma^2/(4 mu^2).  Rates are fitted on the
 last decade of impacts (log-linear in t); their error is the change from the previous decade.
+
+The prefactor P_n = n^2 (E - E_m) 4 mu^2/(9 gamma^2) = (n Xdot_n mu/(3 gamma))^2 (1 + D^2/(2 Xdot_n^2)) approaches 1
+by (ln n/n, 1/n) terms: those of n Xdot_n mu/(3 gamma) (Lemma Giorgio's) and the spring's share D^2/(2 Xdot_n^2) ~
+e^{-(2 lam - 2 mu/3) t_n} = n^-1 (mu^2 < 2: lam = mu/2).  Its limit is the Richardson extrapolation that cancels both
+(bounce.analysis.fitting.richardson_ln) on the last two decades, its error the larger of the extrapolation's change and
+its distance to the least-squares tail fit (fitting.tail_limit), as the limits of check nonlinear.
 """
 
 from __future__ import annotations
@@ -32,10 +38,10 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from ..analysis.fitting import fit_rate
+from ..analysis.fitting import fit_rate, richardson_ln, tail_limit
 from ..exact.flight import EPS
 from ..analysis.theory import E_min, energy_prefactor, equilibrium_rates, tot_mech_energy
-from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge
+from .base import BEYOND, ERRATUM, NOT_CHECKABLE, PAPER, Check, Falsifier, Verdict, claim, judge, on_scenes
 
 NAME = "static-equilibrium"
 
@@ -44,6 +50,15 @@ def energy_formula(ds) -> np.ndarray:
     gamma = float(ds.attrs["gamma"])
     xidot, eta, xdot = ds["xidot"].values, ds["eta"].values, ds["xdot"].values
     return tot_mech_energy(eta - gamma, xidot, xdot + xidot, gamma)
+
+
+def _prefactor(n, e, gamma, mu) -> tuple[float, float]:
+    """(L, err) of P_n = n^2 (E - E_m) 4 mu^2/(9 gamma^2) on the last two decades: Richardson extrapolation (ln n/n and
+    1/n cancelled), err the larger of its change and its distance to the least-squares tail fit."""
+    sel = n >= n[-1] / 100.0
+    P = n[sel] ** 2 * e[sel] / energy_prefactor(gamma, mu)
+    L, err = richardson_ln(n[sel], P)
+    return L, max(err, abs(L - tail_limit(n[sel], P)[0]))
 
 
 def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
@@ -62,14 +77,13 @@ def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
     E = energy_formula(ds)
     Em = E_min(gamma)
     asym = nsim >= int(spec["asymptotic_min_events"])
-    sel = n > n[-1] / 10.0
     return SimpleNamespace(
         name=name, gamma=gamma, mu=mu, n=n, nsim=nsim, t=t, e=e, xdot=xdot, spring=spring, rel=rel,
         ctx=f"scene {name} (gamma = {gamma:g}, mu = {mu:g}, {nsim} events)",
         max_inc=float(np.max(rel)) if rel.size else math.nan, Em=Em, E_N=float(E[-1]),
-        gap=float(np.max(np.abs((E - Em) - e)) / gamma**2), asym=asym, sel=sel, theory=equilibrium_rates(mu),
+        gap=float(np.max(np.abs((E - Em) - e)) / gamma**2), asym=asym, theory=equilibrium_rates(mu),
         rates={"energy": fit_rate(t, e, n), "xdot": fit_rate(t, xdot, n), "spring": fit_rate(t, spring, n)},
-        prefactor=float(np.median(n[sel] ** 2 * e[sel] / energy_prefactor(gamma, mu))) if asym else math.nan)
+        prefactor=_prefactor(n, e, gamma, mu) if asym and mu * mu < 2.0 else (math.nan, math.nan))
 
 
 def measure(spec: dict, inputs: list) -> SimpleNamespace:
@@ -88,7 +102,8 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     rows = {
         "max_rel_increase": [sc.max_inc for sc in scenes], "min_excess": [float(np.min(sc.e)) for sc in scenes],
         "E_inf": [sc.E_N for sc in scenes], "E_inf_formula_gap": [sc.gap for sc in scenes],
-        "excess_last": [float(sc.e[-1]) for sc in scenes], "prefactor": [sc.prefactor for sc in scenes],
+        "excess_last": [float(sc.e[-1]) for sc in scenes], "prefactor": [sc.prefactor[0] for sc in scenes],
+        "prefactor_err": [sc.prefactor[1] for sc in scenes],
         "xdot_last": [float(sc.xdot[-1]) for sc in scenes], "spring_last": [float(sc.spring[-1]) for sc in scenes],
         "xdot_first": [float(sc.xdot[0]) for sc in scenes], "spring_first": [float(sc.spring[0]) for sc in scenes],
     }
@@ -107,7 +122,8 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
         "rate_energy": "decay rate of E - E_m in t (last decade)", "rate_energy_err": "its change from the previous decade",
         "rate_xdot": "decay rate of Xdot_n in t", "rate_xdot_err": "its change from the previous decade",
         "rate_spring": "decay rate of sqrt((y-y_eq)^2 + 2 ydot^2) in t", "rate_spring_err": "its change from the previous decade",
-        "prefactor": "median n^2 (E - E_m) 4 mu^2/(9 gamma^2) over the last decade",
+        "prefactor": "limit of n^2 (E - E_m) 4 mu^2/(9 gamma^2) (Richardson, last two decades)",
+        "prefactor_err": "its error: max(Richardson change, |L - tail fit|)",
         "xdot_first": "xdot after the first event", "xdot_last": "xdot after the last event",
         "spring_first": "sqrt((y-y_eq)^2 + 2 ydot^2) at the first event", "spring_last": "same at the last event",
     }
@@ -125,10 +141,69 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     return SimpleNamespace(scenes=scenes, data=data)
 
 
+RATES = {  # quantity -> (label, what the rate is)
+    "energy": ("E - E_m", "min(2 mu/3, 2 lam)"),
+    "xdot": ("Xdot_n", "mu/3"),
+    "spring": ("D = sqrt((y - y_eq)^2 + 2 ydot^2)", "lam"),
+}
+
+
+# --------------------------------------------------------------------------- falsifiers (contract, point 4)
+
+def _energy_bump(ds):
+    """One record's E - E_m (event 500) 1e-12 (relative) above its predecessor's: E rises once."""
+    e = ds["energy_excess"].values.copy()
+    e[500] = e[499] * (1.0 + 1e-12)
+    ds["energy_excess"] = (ds["energy_excess"].dims, e, ds["energy_excess"].attrs)
+    return ds
+
+
+def _settled_off(ds):
+    """The spring's offset eta = xi + gamma 0.2 gamma off at every record: a ball settling off the equilibrium,
+    E -> E_m + (0.2 gamma)^2/2 = 0.96 E_m."""
+    ds["eta"] = ds["eta"] + 0.2 * float(ds.attrs["gamma"])
+    return ds
+
+
+def _gamma_one(ds):
+    """The records labelled gamma = 1, the one weight where the printed -gamma/2 is -gamma^2/2."""
+    ds.attrs["gamma"] = 1.0
+    return ds
+
+
+def _excess_high(ds):
+    """E - E_m 2 % above the records' at every event."""
+    ds["energy_excess"] = 1.02 * ds["energy_excess"]
+    return ds
+
+
+#: the records behind each decay rate (RATES): E - E_m, Xdot_n, the spring's D from eta and ydot
+_RATE_VARIABLES = {"energy": ("energy_excess",), "xdot": ("xdot",), "spring": ("eta", "ydot")}
+
+
+def _decaying_slower(key: str, fraction: float):
+    """A doctor: the records of quantity ``key`` decaying at ``fraction`` x the predicted rate (times
+    e^{(1 - fraction) rate t})."""
+    def doctor(ds):
+        rate = equilibrium_rates(float(ds.attrs["mu"]))[key]
+        slow = np.exp((1.0 - fraction) * rate * (ds["t"] - float(ds["t"][0])))
+        for name in _RATE_VARIABLES[key]:
+            ds[name] = ds[name] * slow
+        return ds
+    return doctor
+
+
+def _slower(key: str, fraction: float, why: str = "") -> Falsifier:
+    return Falsifier(f"{RATES[key][0]} decaying at {fraction:g} x the predicted rate {RATES[key][1]}{why} (records "
+                     f"times e^(({1 - fraction:g}) rate t))", on_scenes(_decaying_slower(key, fraction)))
+
+
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "energy-non-increasing", PAPER, "thm:static-equilibrium")
+@claim(CLAIMS, "energy-non-increasing", PAPER, "thm:static-equilibrium",
+       falsifier=Falsifier("one record's E - E_m 1e-12 (relative) above its predecessor's (a corrupted record)",
+                           on_scenes(_energy_bump)))
 def energy_non_increasing(m, spec) -> dict:
     budget = float(spec["monotone_ulps"]) * EPS
     return {sc.name: Verdict(
@@ -141,7 +216,9 @@ def energy_non_increasing(m, spec) -> dict:
         judge(sc.max_inc <= budget and float(np.min(sc.e)) >= 0.0)) for sc in m.scenes}
 
 
-@claim(CLAIMS, "energy-limit", PAPER, "thm:static-equilibrium")
+@claim(CLAIMS, "energy-limit", PAPER, "thm:static-equilibrium",
+       falsifier=Falsifier("the spring's offset eta 0.2 gamma off at every record (a ball settling off the "
+                           "equilibrium: E_N - E_m = 0.04 |E_m|)", on_scenes(_settled_off)))
 def energy_limit(m, spec) -> dict:
     rel_tol = float(spec["limit_bracket"])
     out = {}
@@ -159,7 +236,9 @@ def energy_limit(m, spec) -> dict:
 
 
 @claim(CLAIMS, "printed-energy-limit", ERRATUM, "thm:static-equilibrium",
-       known_failure="the proof prints lim E = -gamma/2; eq. Emin gives -gamma^2/2")
+       known_failure="the proof prints lim E = -gamma/2; eq. Emin gives -gamma^2/2",
+       falsifier=Falsifier("the records labelled gamma = 1, the one weight where -gamma/2 = -gamma^2/2 (an input where "
+                           "the printed form holds)", on_scenes(_gamma_one)))
 def printed_energy_limit(m, spec) -> dict:
     return {sc.name: Verdict(
         f"lim E = -gamma/2 (as printed in the proof of Theorem static-equilibrium) [{sc.name}]",
@@ -168,13 +247,6 @@ def printed_energy_limit(m, spec) -> dict:
         f"lim E in [{sc.Em:.6g}, {sc.E_N:.6g}], i.e. {sc.E_N / (-sc.gamma / 2):.3g} x (-gamma/2)",
         "-gamma/2 must lie in the bracket (any tolerance below 1 - gamma separates the two)",
         judge(sc.Em <= -sc.gamma / 2 <= sc.E_N)) for sc in m.scenes}
-
-
-RATES = {  # quantity -> (label, what the rate is)
-    "energy": ("E - E_m", "min(2 mu/3, 2 lam)"),
-    "xdot": ("Xdot_n", "mu/3"),
-    "spring": ("D = sqrt((y - y_eq)^2 + 2 ydot^2)", "lam"),
-}
 
 
 def _rate_verdicts(m, spec, key: str) -> dict:
@@ -200,37 +272,42 @@ def _rate_verdicts(m, spec, key: str) -> dict:
     return out
 
 
-@claim(CLAIMS, "energy-rate", BEYOND, "thm:static-equilibrium")
+@claim(CLAIMS, "energy-rate", BEYOND, "thm:static-equilibrium", falsifier=_slower(
+    "energy", 0.5, ", the rate of an amplitude (Xdot_n, D) taken for that of its square"))
 def energy_rate(m, spec) -> dict:
     return _rate_verdicts(m, spec, "energy")
 
 
-@claim(CLAIMS, "xdot-rate", BEYOND, "thm:static-equilibrium")
+@claim(CLAIMS, "xdot-rate", BEYOND, "thm:static-equilibrium", falsifier=_slower("xdot", 0.9))
 def xdot_rate(m, spec) -> dict:
     return _rate_verdicts(m, spec, "xdot")
 
 
-@claim(CLAIMS, "spring-rate", BEYOND, "thm:static-equilibrium")
+@claim(CLAIMS, "spring-rate", BEYOND, "thm:static-equilibrium", falsifier=_slower("spring", 0.9))
 def spring_rate(m, spec) -> dict:
     return _rate_verdicts(m, spec, "spring")
 
 
-@claim(CLAIMS, "energy-prefactor", BEYOND, "thm:static-equilibrium")
+@claim(CLAIMS, "energy-prefactor", BEYOND, "thm:static-equilibrium",
+       falsifier=Falsifier("E - E_m 2 % above the records' at every event (n^2 (E - E_m) -> 1.02 x 9 gamma^2/(4 mu^2))",
+                           on_scenes(_excess_high)))
 def energy_prefactor_limit(m, spec) -> dict:
+    k = float(spec["rate_sigmas"])
     out = {}
     for sc in m.scenes:
         if not (sc.asym and sc.mu * sc.mu < 2.0):
             continue
-        share = float(np.max(sc.spring[sc.sel] ** 2 / (2.0 * sc.xdot[sc.sel] ** 2)))
-        ptol = float(spec["prefactor_tolerance"]) + share
+        L, err = sc.prefactor
         out[sc.name] = Verdict(
             f"n^2 (E - E_m) -> 9 gamma^2/(4 mu^2) [{sc.name}]",
             "beyond the paper: E - E_m = Xdot^2/4 + D^2/8 at an event, Xdot_n ~ 3 gamma/(mu n) (Theorem main_thm)",
-            f"{sc.ctx}: median of n^2 (E - E_m) 4 mu^2/(9 gamma^2) over the last decade",
-            "1", f"{sc.prefactor:.6f} (spring share D^2/(2 Xdot^2) up to {share:.2g})",
-            f"|. - 1| <= {ptol:.3g} = {spec['prefactor_tolerance']:g} (O(ln n/n) corrections of Xdot_n over the "
-            "decade) + the spring's share of E - E_m, max D^2/(2 Xdot^2) over the decade (it decays faster)",
-            judge(abs(sc.prefactor - 1.0) <= ptol))
+            f"{sc.ctx}: limit of P_n = n^2 (E - E_m) 4 mu^2/(9 gamma^2) by Richardson extrapolation (the ln n/n and 1/n "
+            "terms cancelled: those of n Xdot_n mu/(3 gamma) and the spring's share D^2/(2 Xdot^2) ~ 1/n) on the last "
+            "two decades, checked against the least-squares tail fit",
+            "L = 1", f"L = {L:.8f} +- {err:.2g}",
+            f"|L - 1| <= {k:g} x error (the larger of the extrapolation's change when its points move x2 and its "
+            "distance to the tail fit)",
+            judge(abs(L - 1.0) <= k * err) if math.isfinite(L) and math.isfinite(err) else NOT_CHECKABLE)
     return out
 
 
