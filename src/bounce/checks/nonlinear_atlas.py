@@ -9,8 +9,9 @@
 A cell's limit is the Richardson extrapolation of the sweep; its error is the larger of the extrapolation's own
 change (points moved by a factor 2) and its distance to the independent least-squares tail fit, and the tolerance
 ``sigmas`` times that.  Cells whose run stopped early, had no decade of impacts past fit_n_min, or whose limit error exceeds
-``err_max`` (still in the transient) are listed as not determined (the decay exponent also where its error
-exceeds ``exponent_err_max``); the verdict covers the fitted cells and is not checkable if there are none.
+the sweep's ``err_max`` (still in the transient) are not determined (the decay exponent also where its error exceeds
+``exponent_err_max``): the sweep marks them (its variables ``determined``, :func:`bounce.sweeps.alpha_atlas.determined`),
+its figure greys exactly them, and the claims, "for every power law", are then not checkable (``judge_every``).
 """
 
 from __future__ import annotations
@@ -40,10 +41,10 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     L = ds["limit"].values.reshape(shape)
     err = np.maximum(ds["limit_err"].values.reshape(shape), np.abs(L - ds["tail_limit"].values.reshape(shape)))
     p, p_err = ds["exponent"].values.reshape(shape), ds["exponent_err"].values.reshape(shape)
-    # a cell whose limit error exceeds err_max is not determined (still in its transient: no decade of the
-    # asymptotic regime within the events); its decay exponent likewise, or where p_err exceeds exponent_err_max
-    L, err = np.where(err <= float(spec["err_max"]), L, np.nan), np.where(err <= float(spec["err_max"]), err, np.nan)
-    keep = np.isfinite(L) & (p_err <= float(spec["exponent_err_max"]))
+    # the cells the sweep determines (sweeps.alpha_atlas.determined: its err_max, exponent_err_max); the others are
+    # left out, and the sweep's figure greys exactly them
+    ok, keep = (ds[v].values.reshape(shape).astype(bool) for v in ("determined", "exponent_determined"))
+    L, err = np.where(ok, L, np.nan), np.where(ok, err, np.nan)
     p, p_err = np.where(keep, p, np.nan), np.where(keep, p_err, np.nan)
     data = xr.Dataset(coords={"cell": ("cell", np.array(names, dtype=object), {"long_name": "(a, b, rho, gamma, mu)",
                                                                               "units": "1"}),

@@ -133,8 +133,28 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
                              {"long_name": "q_n: " + "; ".join(f"{k} = {v}" for k, v in QUANTITY_LABELS.items()),
                               "units": "1"}),
     )
-    out.attrs.update(events=int(spec["events"]), fit_n_min=int(spec["fit_n_min"]), drop=float(spec["drop"]))
+    out.attrs.update(events=int(spec["events"]), fit_n_min=int(spec["fit_n_min"]), drop=float(spec["drop"]),
+                     err_max=float(spec["err_max"]), exponent_err_max=float(spec["exponent_err_max"]))
+    limit_ok, exponent_ok = determined(out)
+    flags = {"units": "1", "flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "not_determined determined"}
+    out["determined"] = xr.Variable(out["limit"].dims, limit_ok.astype(np.int8), {
+        "long_name": f"1 if L is determined: finite, its error max(limit_err, |L - tail_limit|) <= err_max = "
+                     f"{spec['err_max']:g}", **flags})
+    out["exponent_determined"] = xr.Variable(out["limit"].dims, exponent_ok.astype(np.int8), {
+        "long_name": f"1 if the decay exponent is determined: L determined and exponent_err <= exponent_err_max = "
+                     f"{spec['exponent_err_max']:g}", **flags})
     return out
+
+
+def determined(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """(limit determined, exponent determined) per cell and quantity, by the thresholds in the attributes: a limit whose
+    error, the larger of the extrapolation's change and its distance to the tail fit, exceeds ``err_max`` is still in
+    its transient (no decade of the asymptotic regime within the events).  One rule for the figure and the check."""
+    L = ds["limit"].values
+    err = np.maximum(ds["limit_err"].values, np.abs(L - ds["tail_limit"].values))
+    with np.errstate(invalid="ignore"):
+        limit_ok = np.isfinite(L) & (err <= float(ds.attrs["err_max"]))
+        return limit_ok, limit_ok & (ds["exponent_err"].values <= float(ds.attrs["exponent_err_max"]))
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
@@ -147,7 +167,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a, b = ds["a"].values, ds["b"].values
     nc = ds.sizes["constants"]
     fig, axes = plt.subplots(2, nc, figsize=(WIDTH, 1.0 + 1.6 * 2), squeeze=False, constrained_layout=True)
-    dev = np.abs(ds["limit"].values - 1.0)
+    limit_ok, exponent_ok = determined(ds)
+    dev = np.where(limit_ok, np.abs(ds["limit"].values - 1.0), np.nan)  # the cells the check leaves out: grey
     finite = dev[np.isfinite(dev) & (dev > 0)]
     norm = LogNorm(vmin=max(finite.min(), 1e-12), vmax=max(finite.max(), 1e-11)) if finite.size else None
     for j, q in enumerate(QUANTITIES):
@@ -157,7 +178,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set_facecolor("0.85")  # grey: not determined
             mesh = ax.pcolormesh(np.arange(a.size + 1), np.arange(b.size + 1), np.where(z > 0, z, np.nan),
                                  cmap="viridis", norm=norm)
-            p = ds["exponent"].values[:, :, c, j].T
+            p = np.where(exponent_ok, ds["exponent"].values, np.nan)[:, :, c, j].T
             for ib in range(b.size):
                 for ia in range(a.size):
                     if np.isfinite(p[ib, ia]):
@@ -174,7 +195,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.grid(False)
     fig.colorbar(mesh, ax=axes, shrink=0.8, label=r"$|L-1|$ (Richardson)")
     fig.suptitle(f"power-law spring: the Discussion's limits over (a, b), {ds.attrs['events']:.3g} events per cell "
-                 "(numbers: decay exponent of the correction, theory 1; grey: not determined)", fontsize=7)
+                 f"\n(numbers: decay exponent of the correction, theory 1; grey: not determined, limit error above "
+                 f"{ds.attrs['err_max']:g}: check nonlinear-atlas leaves these cells out)", fontsize=7)
     save(fig, outputs)
 
 
