@@ -22,8 +22,8 @@ rule (eq. collision-rule), psi'(t_n^-) = xi'(t_n^+) = xidot[n-1].
     landing move the end of the contact by (xi_0/V)(e^{mu T_xi} + 1)/T_xi + (xi'_0/V) e^{mu T_xi} (first
     order in their relative size a_m = |(xi_0, xi'_0)|/V_m; omega = sqrt(1 - mu^2) ~ 1).
 (c) Scene overdamped (mu = 2): y - y_eq at the events (= 2 eta, x = 0) is negative and
-    increasing from some n0 on; n0, the impact of the minimum, sign changes; the transient of
-    n tau_n mu/3; the effective restitution of the first impact, r_eff = gamma tau_1/(2|psi'(t_1^-)|)
+    increasing from some n0 on; n0, the impact of the minimum, sign changes; the transients of
+    n tau_n mu/3 and n Xdot_n mu/(3 gamma) (Theorem main_thm's two laws); the effective restitution of the first impact, r_eff = gamma tau_1/(2|psi'(t_1^-)|)
     (the rigid ball's first flight is 2 r u/gamma).
 (d) Eq. our-r.  The impact speed is the lower mass's, u = Xdot (eq. collision-rule-map): it
     is the variable of eq. restituzione, and in the double-impact regime it equals the
@@ -110,6 +110,20 @@ def contact_prediction(d, xi0, v0) -> np.ndarray:
     return 1.0 - delta + (2.0 + d["mu"] * T) * delta**2 + xi0 * (e + 1.0) / T + v0 * e
 
 
+def band_edges(u, spring_err, gamma: float, mu: float, thr: float) -> tuple[tuple, tuple]:
+    """The band's predicted edges (module docstring, (d)): ((u1 low, u1 at thr, u1 high), (u2 low, u2 high)): the first
+    bounce whose spring term |eps_n| exceeds thr -+ thr^2, and gamma (ln(1/thr) -+ 1)/(2 mu)."""
+    eps = np.abs(spring_err)
+
+    def first_above(level):
+        s = eps > level
+        return float(u[s].min()) if s.any() else math.inf
+
+    ell = math.log(1.0 / thr)
+    return (tuple(first_above(thr + k * thr**2) for k in (-1, 0, 1)),
+            tuple(gamma * (ell + k) / (2.0 * mu) for k in (-1, 1)))
+
+
 def measure(spec: dict, inputs: list) -> SimpleNamespace:
     """The under-damped input's double impacts and eq. our-r test; the over-damped input's approach."""
     data = xr.Dataset()
@@ -127,11 +141,12 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
             m.se = m.rs / math.sqrt(r.size)  # the standard error of the mean
             m.corr = d["r0"] * d["mu"] * d["Txi"] * float(np.max(d["delta"]))
             m.tol = spec["r_sigmas"] * m.se + m.corr
-            m.xi0, m.v0 = landing_vibration(dsr, d)
+        m.xi0, m.v0 = landing_vibration(dsr, d)
         m.o = o = our_r_test(dsr, d, spec)
         # the small-u branch's error model: eps_n = ydot_n/(4 mu gamma) at the single-impact bounces (module docstring)
         R = d["run_len"]
         m.spring_err = np.concatenate([np.full(R - 1, np.nan), dsr["ydot"].values[2 * R:-1] / (4.0 * d["mu"] * d["gamma"])])
+        m.band_small, m.band_large = band_edges(o["u"], m.spring_err, d["gamma"], d["mu"], spec["our_r_threshold"])
         data = data.assign(
             plateau_m=("plateau", d["m"].astype(float), {"long_name": "bounce index m of the plateau", "units": "1"}),
             plateau_r=("plateau", d["r"], {"long_name": "r_m = f_(m+1)/f_m on the plateau", "units": "1"}),
@@ -140,6 +155,9 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
                                   {"long_name": "|psi'(t_(2m+1)^-)|/psi'(t_(2m+2)^+) (printed orientation)", "units": "1"}),
             contact_ratio=("contact", d["contact_ratio"], {"long_name": "tau_(2m-1)/T_xi (contact time)", "units": "1"}),
             contact_delta=("contact", d["delta"], {"long_name": "first-order gravity shortening delta_m", "units": "1"}),
+            contact_predicted=("contact", contact_prediction(d, m.xi0, m.v0), {
+                "long_name": "predicted tau_(2m-1)/T_xi: gravity to second order, the landing's vibration to first",
+                "units": "1"}),
             falcon_r=("bounce_f", d["r_all"][:200], {"long_name": "r_m = f_(m+1)/f_m, first 200 bounces", "units": "1"}),
             bounce_u=("bounce", o["plot"]["u"], {
                 "long_name": "landing speed u (lower mass) of the macroscopic bounce", "units": "1",
@@ -153,6 +171,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
             com_r=("com_sample", o["plot"]["rcom"], {"long_name": "tau_(n+1)/tau_n", "units": "1"}),
         )
         data.attrs.update(r_theory=d["r0"], T_xi=d["Txi"], u_c=o["uc"], band_u1=o["u1"], band_u2=o["u2"],
+                          band_u1_predicted=m.band_small[1], band_u2_predicted=float(np.mean(m.band_large)),
                           r_band_u1=o["d1"], r_band_u2=o["d2"], slope_com=o["slope_com"],
                           slope_x=o["slope_x"], plateau_length=P, double_run=d["run_len"],
                           rest_gamma=d["gamma"], rest_mu=d["mu"], rest_scene=name,
@@ -316,17 +335,9 @@ def our_r_band(m, spec) -> dict:
     if not m.under:
         return {}
     o, thr, least, d = m.o, spec["our_r_threshold"], int(spec["our_r_min_outside"]), m.d
-    u, eps = o["u"], np.abs(m.spring_err)
+    u = o["u"]
     n_below, n_above = int(np.sum(u < o["u1"])), int(np.sum(u > o["u2"]))
-    ell = math.log(1.0 / thr)
-    uL = d["gamma"] * ell / (2.0 * d["mu"])
-    l_lo, l_hi = uL * (1.0 - 1.0 / ell), uL * (1.0 + 1.0 / ell)
-
-    def first_above(level):
-        s = eps > level
-        return float(u[s].min()) if s.any() else math.inf
-
-    s_lo, s_at, s_hi = first_above(thr - thr**2), first_above(thr), first_above(thr + thr**2)
+    (s_lo, s_at, s_hi), (l_lo, l_hi) = m.band_small, m.band_large
     ok = bool(np.isfinite(o["u1"]) and s_lo <= o["u1"] <= s_hi and l_lo <= o["u2"] <= l_hi
               and o["u1"] < o["uc"] < o["u2"])
     # the band where the models predict it, but the run ends (or starts) inside it: a side is not sampled
@@ -592,6 +603,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         mc = np.arange(1, c.size + 1)
         a2.plot(mc, c, "k.", ms=4, label=r"$\tau_{2m-1}/T_\xi$ (contact)")
         a2.plot(mc, 1 - ds["contact_delta"].values, "C1-", label=r"$1-\gamma T_\xi e^{\mu T_\xi}/(2V_m)$")
+        a2.plot(mc, ds["contact_predicted"].values, "C0x", ms=4, label="predicted (with the vibration at landing)")
         a2.axhline(1, color="C2", lw=1, label=r"$T_\xi=\pi/\sqrt{1-\mu^2}$")
         a2.set_xlabel("double impact $m$")
         a2.set_ylabel(r"contact time / $T_\xi$")
@@ -603,6 +615,10 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         for ax in (a5, a6):
             ax.axvspan(ds.attrs["band_u1"], ds.attrs["band_u2"], color="r", alpha=0.1,
                        label=r"$|(1-r)/(1-r_{our})-1|>%g$" % ds.attrs["our_r_threshold"])
+            for key in ("band_u1_predicted", "band_u2_predicted"):
+                if np.isfinite(ds.attrs[key]):
+                    ax.axvline(ds.attrs[key], color="r", ls=":", lw=0.8,
+                               label="edges predicted by the error models" if key.startswith("band_u1") else None)
         a5.semilogx(u[~dbl], r[~dbl], ".", ms=1, color="0.4", label="single-impact bounces")
         a5.semilogx(u[dbl], r[dbl], "o", ms=3, color="C0", label="double-impact bounces")
         a5.semilogx(uu, our_r(uu, g, mu), "C3-", lw=1, label="eq. our-r")
