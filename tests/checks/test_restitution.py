@@ -55,7 +55,7 @@ def test_our_r_band_flips_when_the_large_u_branch_is_off():
 def test_contact_time_follows_the_second_order_prediction():
     """The first contact lands with the spring at rest (a_1 = 0): its duration is 1 - delta + (2 + mu T_xi) delta^2
     to O(delta^3), far closer than 1 - delta alone."""
-    m, sp = _measured()
+    m, _ = _measured()
     d = m.d
     pred = restitution.contact_prediction(d, m.xi0, m.v0)
     assert abs(m.xi0[0]) < 1e-12 and abs(m.v0[0]) < 1e-12
