@@ -80,3 +80,28 @@ def test_temperature_outlasts_sequence_is_a_sign_test():
     few["t_temp"] = xr.where(np.isfinite(few["t_temp"]), few["t_temp"], 30.0 * few["t_seq"])
     rows = G.verdicts(G.measure(SPEC, [few]), SPEC, only="temperature-outlasts-sequence")
     assert {v.verdict for v in rows} == {NOT_CHECKABLE}
+
+
+@pytest.mark.parametrize("claim", [c.id for c in G.claims])
+def test_falsifier_flips_on_the_synthetic_sweep(claim):
+    """Each claim's falsifier (bounce.checks.base.Falsifier) flips its rows on the synthetic file (4 n over 1.5
+    decades, 8 states): a sweep the claims can decide."""
+    from bounce.checks.base import falsify, unflipped
+
+    true_rows = G.verdicts(G.measure(SPEC, [sweep_like()]), SPEC, only=claim)
+    doctored = falsify(G, claim, SPEC, [sweep_like()])
+    assert not unflipped(true_rows, doctored)
+
+
+def test_sequence_parting_needs_the_power_to_refute_a_fixed_count_per_grain():
+    """Two n a factor 3 apart, 4 states each, scattered by a factor e (as the CI-sized sweep): 3 x the standard error of
+    s exceeds 1, so s = 0 would pass as well as s = -1, and the row is not checkable rather than reproduced."""
+    few = sweep_like().isel(n=[0, 1], sample=slice(0, 4))
+    c = few["collisions_seq"].values * np.exp(np.random.default_rng(1).standard_normal(few["collisions_seq"].shape))
+    few["collisions_seq"] = (few["collisions_seq"].dims, c)
+    few.attrs["samples"] = 4
+    assert verdict_of(few, "sequence-parting-1-over-n") == {NOT_CHECKABLE}
+
+
+def verdict_of(ds, claim):
+    return {v.verdict for v in G.verdicts(G.measure(SPEC, [ds]), SPEC, only=claim)}

@@ -14,7 +14,10 @@ impacts near equilibrium, the Discussion's asymptotic map).  Claims:
    ``break_deviation``: gravity accelerates the centre of mass during the contact time T_c ~ u^(-1/5), leaving
    the spring moving (xi'/u = -gamma T_c/u, recorded), and the single-cycle law breaks where that is comparable
    with 1 - r ~ u^(1/5), i.e. gamma u^(-6/5) ~ u^(1/5): u_b ~ gamma^(5/7).  The log-log slope of the measured
-   u_b against gamma is compared with 5/7.
+   u_b against gamma is compared with 5/7, within the resolution of the u grid (the break lies between the grid
+   point u_b and the next one up, a step s = ln(u_(i+1)/u_i): the slope is known to the interval those steps allow).
+   Measured on the default sweep (41 speeds, gamma = 1e-12 .. 1e-4): local slopes 0.83, 0.75, 0.75, a fitted slope
+   ~0.78, above 5/7 by more than the grid's resolution: a known failure of our scaling (see the claim).
 4. ``repeated-impacts`` (paper, the Discussion's conclusion): for repeated impacts close to equilibrium the
    restitution r_n = Xdot_(n+1)/Xdot_n of consecutive impacts obeys the map eq. mappa, 1 - r_n = alpha Xdot_n
    (slope 1 in u, not 1/5), and the 1/5 law with the U of claim 2 overestimates 1 - r_n by orders of magnitude:
@@ -36,7 +39,8 @@ import xarray as xr
 from ..kinds import IMPACT
 from ..analysis.fitting import fit_loglog, scaled_lstsq
 from ..analysis.theory import nonlin_alpha_limit, onefifth_U, rest_coefficient_function_of_mu
-from .base import BEYOND, NOT_CHECKABLE, PAPER, Check, Verdict, claim, judge, variable
+from .base import (BEYOND, NOT_CHECKABLE, PAPER, Check, Falsifier, Verdict, claim, judge, on_named, on_scenes, variable,
+                   with_variable)
 
 NAME = "onefifth-rest-coeff"
 SUBJECT = "sec:Discussion"
@@ -149,9 +153,32 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
 
 
 CLAIMS: list = []
+SWEEP = "hertz-restitution"
 
 
-@claim(CLAIMS, "exponent", PAPER, SUBJECT)
+def _quarter_law(sw):
+    """Single impacts of a 1/4 law: 1 - r times u^0.05 (exponent 1/5 + 0.05)."""
+    return with_variable(sw, "r", 1.0 - (1.0 - sw["r"].values) * sw["arrival"].values ** 0.05)
+
+
+def _lossier(sw):
+    """Single impacts losing 5 % more: 1 - r times 1.05 (the same power, U / 1.05^5)."""
+    return with_variable(sw, "r", 1.0 - 1.05 * (1.0 - sw["r"].values))
+
+
+def _gravity_mislabelled(sw):
+    """The sweep's gravities recorded as gamma^0.9: the breaks scale as gamma^(slope/0.9)."""
+    return sw.assign_coords(gamma=("gamma", sw["gamma"].values ** 0.9, sw["gamma"].attrs))
+
+
+def _speeds_low(ds):
+    """Repeated impacts whose speeds are 10 % low for their loss: 1 - r_n = 1.1 alpha Xdot_n."""
+    return with_variable(ds, "xdot", ds["xdot"].values / 1.1)
+
+
+@claim(CLAIMS, "exponent", PAPER, SUBJECT,
+       falsifier=Falsifier("single impacts of a 1/4 law (1 - r x u^0.05: exponent off by 0.05)",
+                           on_named(SWEEP, _quarter_law)))
 def exponent(m, spec) -> Verdict:
     s, k = m.single, float(spec["sigmas"])
     return Verdict(
@@ -163,7 +190,8 @@ def exponent(m, spec) -> Verdict:
         f"x{spec['window_factor']:g} and the change with one correction less)", judge(abs(s.p - FIFTH) <= k * s.p_err))
 
 
-@claim(CLAIMS, "U-first-order", BEYOND, SUBJECT)
+@claim(CLAIMS, "U-first-order", BEYOND, SUBJECT,
+       falsifier=Falsifier("single impacts losing 5 % more (1 - r x 1.05: U / 1.05^5)", on_named(SWEEP, _lossier)))
 def u_first_order(m, spec) -> Verdict:
     s, k = m.single, float(spec["sigmas"])
     return Verdict(
@@ -175,7 +203,14 @@ def u_first_order(m, spec) -> Verdict:
         "one more order u^(3/5))", judge(abs(s.U - s.U_theory) <= k * s.U_err))
 
 
-@claim(CLAIMS, "gravity-breaks", BEYOND, SUBJECT)
+@claim(CLAIMS, "gravity-breaks", BEYOND, SUBJECT,
+       known_failure="on the default sweep (41 speeds, gamma = 1e-12, 1e-9, 1e-6, 1e-4) the breaks' local slopes are "
+                     "0.83, 0.75, 0.75 and the fitted slope ~0.78, above 5/7 = 0.714 by more than the grid's "
+                     "resolution (+-0.04): gamma T_c/u against 1 - r is the leading order in (u/U)^(1/5), which is up "
+                     "to 0.2 at the breaks (u_b ~ 2e-3 at gamma = 1e-4), so the scaling u_b ~ gamma^(5/7) is not "
+                     "reached over this range; the CI-sized grid (16 speeds) cannot resolve the difference",
+       falsifier=Falsifier("the sweep's gravities recorded as gamma^0.9 (the breaks' slope x 1.11)",
+                           on_named(SWEEP, _gravity_mislabelled)))
 def gravity_breaks(m, spec) -> Verdict:
     s = m.single
     found = np.isfinite(s.u_break)
@@ -188,18 +223,22 @@ def gravity_breaks(m, spec) -> Verdict:
     lg, lu = np.log(s.gamma[found]), np.log(s.u_break[found])
     slope = float(np.polyfit(lg, lu, 1)[0])
     step = float(np.log(s.u[1, 0] / s.u[0, 0]))
-    tol = 2.0 * step / float(lg.max() - lg.min()) + float(spec["break_slope_model"])
+    # ln of the true break = ln u_b + e_j, 0 <= e_j < step: the least-squares slope moves by sum_j w_j e_j
+    w = (lg - lg.mean()) / float(np.sum((lg - lg.mean()) ** 2))
+    lo, hi = slope + step * float(w[w < 0].sum()), slope + step * float(w[w > 0].sum())
     return Verdict(
         text, "eq. onefifth-rest-coeff (our analysis of the Discussion's single cycle)",
         f"{m.ctx}: u_b = the largest u below the fit window where |(1 - r)/law - 1| > {spec['break_deviation']:g}, "
         f"per gamma; slope of ln u_b against ln gamma", "slope 5/7 = 0.714",
-        f"{listing}; slope = {slope:.4f}",
-        f"|slope - 5/7| <= {tol:.3g} = 2 grid steps of ln u over the ln gamma span + {spec['break_slope_model']:g} "
-        "(the scaling holds at leading order in 1 - r; a fixed deviation threshold meets it at a slowly varying G)",
-        judge(abs(slope - 5.0 / 7.0) <= tol))
+        f"{listing}; slope = {slope:.4f}, with the breaks anywhere in their grid steps [{lo:.4f}, {hi:.4f}]",
+        f"5/7 in [{lo:.4f}, {hi:.4f}]: each break lies between its grid point and the next one up (a step of "
+        f"{step:.3g} in ln u), which moves the fitted slope by at most these amounts (nothing else: no model allowance)",
+        judge(lo <= 5.0 / 7.0 <= hi))
 
 
-@claim(CLAIMS, "repeated-impacts", PAPER, SUBJECT)
+@claim(CLAIMS, "repeated-impacts", PAPER, SUBJECT,
+       falsifier=Falsifier("repeated impacts whose speeds are 10 % low for their loss (Xdot / 1.1: 1 - r_n = "
+                           "1.1 alpha Xdot_n)", on_scenes(_speeds_low)))
 def repeated_impacts(m, spec) -> Verdict:
     rep = m.rep
     tol, factor = float(spec["map_slope_tolerance"]), float(spec["law_factor"])

@@ -19,7 +19,7 @@ import xarray as xr
 from ..figures.common import WIDTH, plt, save
 from ..io import sample_dataset
 from ..analysis.theory import T_xi
-from .base import PAPER, Check, Verdict, claim, judge
+from .base import PAPER, Check, Falsifier, Verdict, claim, judge, with_variable
 
 
 def _var(value, long_name):
@@ -73,7 +73,43 @@ def measure(spec: dict, inputs: list[xr.Dataset]) -> SimpleNamespace:
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "height-drop", PAPER, "fig:rigid-fall")
+def _on_input(i: int, fn):
+    """A falsifier's doctor: ``fn(ds) -> ds`` on a deep copy of input ``i`` (0: the fall of fig. rigid-fall, 1: the
+    contacts of fig. very_rigid_poincare)."""
+    def doctor(inputs, spec):
+        inputs = list(inputs)
+        inputs[i] = fn(inputs[i].copy(deep=True))
+        return inputs, spec
+    return doctor
+
+
+def _first_flight_missing(ds):
+    """The fall restarted at the landing that ends its first macroscopic flight (flights longer than 2 T_xi): the
+    state after that event becomes the initial one, the later records are kept with t from it."""
+    k = 1 + int(np.argmax(ds["tau"].values[2:] > 2.0 * T_xi(float(ds.attrs["mu"]))))  # the flight after event k
+    out = ds.isel(event=slice(k + 1, None))
+    out = out.assign_coords(event=np.arange(out.sizes["event"]))
+    out = with_variable(out, "t", out["t"].values - float(ds["t"].values[k]))
+    out.attrs.update(x0=0.0, xdot0=float(ds["xdot"].values[k]), xidot0=float(ds["xidot"].values[k]),
+                     eta0=float(ds["eta"].values[k]), initial_form="deviations",
+                     y0=float(ds["y"].values[k]), ydot0=float(ds["ydot"].values[k]),
+                     **{a: float(ds.attrs[a]) - float(ds["t"].values[k]) for a in ("t_valid", "t_end")})
+    return out
+
+
+def _upper_mass_falling(ds):
+    """Contacts at which the upper mass is always falling (ydot -> -|ydot|): no zig-zag."""
+    return with_variable(ds, "ydot", -np.abs(ds["ydot"].values))
+
+
+def _spiral_outwards(ds):
+    """The contacts' y - y_eq in reverse order: an oscillation growing instead of decaying."""
+    return with_variable(ds, "y_minus_yeq", ds["y_minus_yeq"].values[::-1])
+
+
+@claim(CLAIMS, "height-drop", PAPER, "fig:rigid-fall",
+       falsifier=Falsifier("the fall's record missing its first macroscopic flight (flights counted from the second)",
+                           _on_input(0, _first_flight_missing)))
 def height_drop(m, spec) -> Verdict:
     lo, hi = spec["drop_between"]
     k = m.k
@@ -87,7 +123,9 @@ def height_drop(m, spec) -> Verdict:
                    "exact (flight indices are integers)", judge(lo <= k and k + 1 <= hi))
 
 
-@claim(CLAIMS, "zigzag", PAPER, "fig:very_rigid_poincare")
+@claim(CLAIMS, "zigzag", PAPER, "fig:very_rigid_poincare",
+       falsifier=Falsifier("contacts with the upper mass always falling (ydot -> -|ydot|)",
+                           _on_input(1, _upper_mass_falling)))
 def zigzag(m, spec) -> Verdict:
     return Verdict("early contacts are double impacts: ydot alternates in sign (zig-zag)",
                    "fig. very_rigid_poincare, section 8.1",
@@ -96,7 +134,8 @@ def zigzag(m, spec) -> Verdict:
                    judge(m.alternation >= 0.9))
 
 
-@claim(CLAIMS, "spiral", PAPER, "fig:very_rigid_poincare")
+@claim(CLAIMS, "spiral", PAPER, "fig:very_rigid_poincare",
+       falsifier=Falsifier("the contacts' y - y_eq in reverse order (a spiral outwards)", _on_input(1, _spiral_outwards)))
 def spiral(m, spec) -> Verdict:
     a, b = spec["spiral_contacts"]
     return Verdict("late contacts spiral towards (0,0,0): damped oscillation of Y_n - y_eq",

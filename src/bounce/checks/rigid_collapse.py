@@ -10,7 +10,8 @@ double impact over the landing speed (eq. standard-model applied to the centre o
 
 * Constant r = r_1 (eqs. standard-model, geometric-map): u_k = r^k u_0, u_0 = r v_1, and the
   flights sum to t_inf = t_1 + 2 u_0/(gamma (1 - r)) (introduction).  The sequence is summed
-  exactly (math.fsum) and compared with the closed form.
+  exactly (math.fsum) and compared with the closed form: an identity (a geometric series against its own
+  closed form), kept as the row that shows the rigid collapse time the dimer is compared with.
 * r(u) = 1 - (u/U)^(1/5) (eq. onefifth-rest-coeff) with U = v_1/(1 - r_1)^5, so that
   r(v_1) = r_1.  The map u_{k+1} = u_k - U^(-1/5) u_k^(6/5) is Remark x-xbeta-map with
   beta = 6/5: n^5 u_n -> 5^5 U, so the flights 2u_n/gamma decay like n^-5 and the time left,
@@ -33,11 +34,17 @@ from types import SimpleNamespace
 import numpy as np
 import xarray as xr
 
-from .base import ERRATUM, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, Check, Verdict, claim, judge
+from .base import (ERRATUM, IDENTITY, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, Check, Falsifier, Verdict, claim,
+                   judge, on_scenes, with_variable)
 from ..analysis.fitting import loglog_slope, tail_limit
 from ..analysis.theory import T_xi, our_r, rest_coefficient_function_of_mu
 
 NAME = "rigid-collapse"
+#: the exponent of the rigid ball's law r(u) = 1 - (u/U)^LAW_EXPONENT (eq. onefifth-rest-coeff); the predictions
+#: (n^5 u_n -> 5^5 U, R_n ~ n^-4) are those of 1/5
+LAW_EXPONENT = 0.2
+#: eq. our-r's small-u branch in the rigid ball's own speed (theory.our_r(com=True)) instead of as printed
+OUR_R_COM = False
 
 def dimer_first_bounce(ds) -> dict:
     """t_1, v_1 and r_1 from the first two impacts of a complete-prefix scene dataset."""
@@ -70,8 +77,9 @@ def iterate_map(u0, step, bounces):
 
 
 def onefifth(t1, v1, U, gamma, bounces):
-    a = U ** (-0.2)
-    u = iterate_map((1.0 - (v1 / U) ** 0.2) * v1, lambda x: x - a * x**1.2, bounces)
+    p = LAW_EXPONENT
+    a = U ** (-p)
+    u = iterate_map((1.0 - (v1 / U) ** p) * v1, lambda x: x - a * x ** (1.0 + p), bounces)
     tau = 2.0 * u / gamma
     rem = np.cumsum(tau[::-1])[::-1]  # R_n = sum_{k >= n} tau_k: no cancellation
     rem = np.append(rem[1:], 0.0)  # time left after flight n
@@ -127,7 +135,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
     passes = nd[td > m.t_inf_max]
     m.n_pass = float(passes[0]) if passes.size else math.nan
     # the rigid ball with eq. our-r
-    m.b = b = our_r_ball(t1, v1, gamma, mu, int(spec["our_r_bounces"]))
+    m.b = b = our_r_ball(t1, v1, gamma, mu, int(spec["our_r_bounces"]), com=OUR_R_COM)
     nb = np.arange(1, b["u"].size + 1, dtype=float)
     m.ratio = b["ratio"]
 
@@ -172,7 +180,10 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "constant-r-collapse", PAPER, "sec:introduction")
+@claim(CLAIMS, "constant-r-collapse", IDENTITY, "sec:introduction",
+       why_identity="the flights 2 r^k u_0/gamma of a constant-r ball form a geometric series, and t_inf is its closed "
+                    "form from the same r, u_0, gamma: the sum equals it for any input (the row checks only the "
+                    "floating-point summation); the dimer's own approach is judged by row dimer-no-collapse")
 def constant_r_collapse(m, spec) -> Verdict:
     c = m.c
     rel = abs(c["t_sum"] - c["t_inf"]) / c["t_inf"]
@@ -186,7 +197,9 @@ def constant_r_collapse(m, spec) -> Verdict:
         judge(rel <= float(spec["sum_rtol"])))
 
 
-@claim(CLAIMS, "onefifth-limit", PAPER, "sec:introduction")
+@claim(CLAIMS, "onefifth-limit", PAPER, "sec:introduction",
+       falsifier=Falsifier("the rigid ball's law with exponent 1/4 instead of 1/5 (r = 1 - (u/U)^(1/4): beta = 5/4)",
+                           patch=lambda: {"LAW_EXPONENT": 0.25}))
 def onefifth_limit(m, spec) -> Verdict:
     ltol = max(float(spec["limit_tol"]), 3 * m.Lerr)
     emax = float(spec["fit_err_max"])
@@ -201,7 +214,9 @@ def onefifth_limit(m, spec) -> Verdict:
         judge(abs(m.L - 1.0) <= ltol and m.Lerr <= emax))
 
 
-@claim(CLAIMS, "onefifth-collapse", PAPER, "sec:introduction")
+@claim(CLAIMS, "onefifth-collapse", PAPER, "sec:introduction",
+       falsifier=Falsifier("the rigid ball's law with exponent 1/4 instead of 1/5 (r = 1 - (u/U)^(1/4): R_n ~ n^-3)",
+                           patch=lambda: {"LAW_EXPONENT": 0.25}))
 def onefifth_collapse(m, spec) -> Verdict:
     etol = max(float(spec["exponent_tol"]) * 4, 2 * abs(m.slope_hi - m.slope_lo))
     ltol = max(float(spec["limit_tol"]), 3 * m.LRerr)
@@ -218,7 +233,13 @@ def onefifth_collapse(m, spec) -> Verdict:
         judge(abs(m.slope + 4.0) <= etol and abs(m.LR - 1.0) <= ltol and m.LRerr <= float(spec["fit_err_max"])))
 
 
-@claim(CLAIMS, "dimer-no-collapse", PAPER, "thm:main_thm")
+def _impacts_late(ds):
+    """Records whose impact times are 5 % late (t x 1.05: t_n grows like 1.05 (3/mu) ln n)."""
+    return with_variable(ds, "t", 1.05 * ds["t"].values)
+
+
+@claim(CLAIMS, "dimer-no-collapse", PAPER, "thm:main_thm",
+       falsifier=Falsifier("impact times 5 % late (t_n x 1.05)", on_scenes(_impacts_late)))
 def dimer_no_collapse(m, spec) -> Verdict:
     mu, sl, sl0, td = m.mu, m.sl, m.sl0, m.td
     tol = float(spec["log_slope_tol"])
@@ -259,7 +280,9 @@ def rigid_ball_row(m, spec, ball: dict, stated: str) -> Verdict:
 @claim(CLAIMS, "our-r-rigid-ball", ERRATUM, "eq:our-r",
        known_failure="eq. our-r is said to be very accurate for small u; a rigid ball with it (flights 2u/gamma) has "
                      "u ~ 3 gamma/(mu n), tau_n ~ 6/(mu n), twice the dimer's: its small-u branch is the lower mass's "
-                     "map, in the ball's own speed it reads 1 - 2 mu u/(3 gamma)")
+                     "map, in the ball's own speed it reads 1 - 2 mu u/(3 gamma)",
+       falsifier=Falsifier("eq. our-r's small-u branch written in the ball's own speed, 1 - 2 mu u/(3 gamma), in place "
+                           "of the printed one", patch=lambda: {"OUR_R_COM": True}))
 def our_r_rigid_ball(m, spec) -> Verdict:
     return rigid_ball_row(m, spec, m.b, "eq. our-r as printed")
 
