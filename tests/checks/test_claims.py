@@ -151,7 +151,7 @@ SWEEPS = {
     "ring-cooling": {"shards": 1, "r": [0.5, 0.95], "n": 40, "samples": 2, "time": {"min": 1.0, "max": 2.0e4, "n": 25},
                      "worldlines": {"t_max": 1.0e4, "points": 60, "every": 2}},
     "column-drop": {"shards": 1, "r": [0.9], "n": [1, 2, 4], "samples": 1},
-    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [20, 60], "samples": 4, "horizon": 100.0,
+    "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [10, 30, 90], "samples": 6, "horizon": 100.0,
                        "time": {"min": 0.1, "points": 12}},
 }
 
@@ -727,7 +727,7 @@ def test_overdamped_immediately_holds_loosely_not_strictly():
     assert row(rows, "restitution/overdamped-no-transient[odfull]").verdict == REPRODUCED
     strict = row(rows, "restitution/overdamped-asymptotic-1pc[odfull]")
     assert strict.verdict == NOT_REPRODUCED and strict.measured.startswith("tau: ")
-    assert row(rows, "restitution/falcon-comparison[rest]").verdict == NOT_CHECKABLE
+    assert row(rows, "restitution/falcon-comparison[rest]").verdict == REPRODUCED  # the simulated side of the comparison
 
 
 def test_section_5_rows_and_min_energy_above_equilibrium():

@@ -582,15 +582,44 @@ def overdamped_inelastic(m, spec) -> dict:
         f"r_eff^2 <= {frac:g}: less than {frac:.1%} of the drop height is regained", judge(o["r_eff"] ** 2 <= frac))}
 
 
+def _binned(u: np.ndarray, v: np.ndarray, per_decade: int = 5, least: int = 5) -> tuple:
+    """Median and the 25-75 % and 5-95 % ranges of v in log-spaced bins of u (``per_decade`` a decade; bins with fewer
+    than ``least`` values left out): a cloud of 1e5 bounces as a line with its spread."""
+    ok = np.isfinite(u) & np.isfinite(v) & (u > 0)
+    u, v = u[ok], v[ok]
+    edges = np.geomspace(u.min(), u.max() * (1 + 1e-12), max(2, int(np.log10(u.max() / u.min()) * per_decade) + 1))
+    idx = np.digitize(u, edges) - 1
+    rows = [(np.sqrt(edges[k] * edges[k + 1]), *np.percentile(v[idx == k], (5, 25, 50, 75, 95)))
+            for k in range(edges.size - 1) if np.count_nonzero(idx == k) >= least]
+    return tuple(np.array(c) for c in zip(*rows)) if rows else (np.array([]),) * 6
+
+
+def _spread(ax, u, v, color, label, log=False):
+    """The binned median of v against u with its 25-75 % (dark) and 5-95 % (light) ranges."""
+    c, p5, p25, p50, p75, p95 = _binned(u, v)
+    if not c.size:
+        return
+    ax.fill_between(c, p5, p95, color=color, alpha=0.15, lw=0)
+    ax.fill_between(c, p25, p75, color=color, alpha=0.35, lw=0)
+    ax.plot(c, p50, "-", color=color, lw=1.2, label=label + " (median, 25-75 %, 5-95 %)")
+
+
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     from ..figures.common import WIDTH, plt, save
 
-    fig, axes = plt.subplots(3, 2, figsize=(WIDTH, 7.6))
+    fig, axes = plt.subplots(3, 2, figsize=(WIDTH, 8.4))
     (a1, a2), (a3, a4), (a5, a6) = axes
     if "plateau_r" in ds:
         r0 = float(ds.attrs["r_theory"])
         fr = ds["falcon_r"].values
-        a1.plot(np.arange(1, fr.size + 1), fr, "k.-", ms=3, lw=0.5, label=r"$r_m=f_{m+1}/f_m$, $f_m=\tau_{2m}$")
+        lo, hi = 0.85, 1.06  # r_m beyond these (the pairs breaking up) drawn at the edge, clipped
+        fr = fr[:80]
+        mf = np.arange(1, fr.size + 1)
+        a1.plot(mf, np.clip(fr, lo, hi), "k.-", ms=3, lw=0.5, label=r"$r_m=f_{m+1}/f_m$, $f_m=\tau_{2m}$")
+        for edge, mark in ((lo, "v"), (hi, "^")):
+            out = (fr < lo) if edge == lo else (fr > hi)
+            a1.plot(mf[out], np.full(out.sum(), edge), mark, ms=4, color="C3", clip_on=False,
+                    label=r"$r_m$ off the axis (clipped)" if edge == lo and out.any() else None)
         m = ds["plateau_m"].values
         a1.plot(m, ds["plateau_after"].values, "o", mfc="none", ms=4, color="C0",
                 label=r"$\dot\Psi(t_{2m+2}^+)/\dot\Psi(t_{2m}^+)$")
@@ -598,13 +627,13 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                 label=r"printed: $|\dot\Psi(t_{2m+1}^-)|/\dot\Psi(t_{2m+2}^+)$")
         a1.axhline(r0, color="C2", lw=1, label=r"$e^{-\mu T_\xi}$")
         a1.axvspan(0.5, m.max() + 0.5, color="C2", alpha=0.1, label=r"plateau ($f_m\geq 2T_d$)")
-        a1.set_ylim(0.85, 1.06)
+        a1.set_ylim(lo, hi)
         a1.set_xlim(0, min(fr.size, 80))
         a1.set_xlabel("macroscopic bounce $m$")
         a1.set_ylabel("restitution coefficient")
         a1.set_title(r"(a) %s: $\gamma=%g$, $\mu=%g$" % (ds.attrs["rest_scene"], ds.attrs["rest_gamma"],
                                                           ds.attrs["rest_mu"]), fontsize=8)
-        a1.legend(fontsize=5.5, loc="lower left")
+        a1.legend(fontsize=5.5, loc="lower left", ncol=2, framealpha=0.9)
         c = ds["contact_ratio"].values
         mc = np.arange(1, c.size + 1)
         a2.plot(mc, c, "k.", ms=4, label=r"$\tau_{2m-1}/T_\xi$ (contact)")
@@ -614,7 +643,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a2.set_xlabel("double impact $m$")
         a2.set_ylabel(r"contact time / $T_\xi$")
         a2.set_title("(b) duration of the double impact", fontsize=8)
-        a2.legend(fontsize=6)
+        a2.set_ylim(top=1.0025)
+        a2.legend(fontsize=5, loc="upper right", ncol=2, framealpha=0.9)
         u, r, dbl = ds["bounce_u"].values, ds["bounce_r"].values, ds["bounce_double"].values.astype(bool)
         g, mu = float(ds.attrs["rest_gamma"]), float(ds.attrs["rest_mu"])
         uu = np.geomspace(u.min(), u.max(), 400)
@@ -625,28 +655,34 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                 if np.isfinite(ds.attrs[key]):
                     ax.axvline(ds.attrs[key], color="r", ls=":", lw=0.8,
                                label="edges predicted by the error models" if key.startswith("band_u1") else None)
-        a5.semilogx(u[~dbl], r[~dbl], ".", ms=1, color="0.4", label="single-impact bounces")
+        _spread(a5, u[~dbl], r[~dbl], "0.3", f"{np.count_nonzero(~dbl)} single-impact bounces")
         a5.semilogx(u[dbl], r[dbl], "o", ms=3, color="C0", label="double-impact bounces")
         a5.semilogx(uu, our_r(uu, g, mu), "C3-", lw=1, label="eq. our-r")
+        a5.set_xscale("log")
         a5.set_ylim(0.6, 1.2)
         a5.set_xlabel(r"impact speed $u=\dot X$ of the lower mass  [$L/\sqrt{m/2k}$]")
         a5.set_ylabel(r"restitution per bounce $r$")
         a5.set_title("(e) eq. our-r vs the dimer", fontsize=8)
-        a5.legend(fontsize=5.5, loc="lower left")
+
         one = 1 - r
         pos = one > 0
-        a6.loglog(u[pos & ~dbl], one[pos & ~dbl], ".", ms=1, color="0.4", label=r"$u=\dot X$, $r=\dot X_{n+1}/\dot X_n$")
-        a6.loglog(u[pos & dbl], one[pos & dbl], "o", ms=3, color="C0")
+        _spread(a6, u[pos & ~dbl], one[pos & ~dbl], "0.3", r"$u=\dot X$, $r=\dot X_{n+1}/\dot X_n$")
+        a6.plot(u[pos & dbl], one[pos & dbl], "o", ms=3, color="C0")
         uc_, rc_ = ds["com_u"].values, ds["com_r"].values
         pc = rc_ < 1
-        a6.loglog(uc_[pc], 1 - rc_[pc], ".", ms=1, color="C1",
-                  label=r"$u=\gamma\tau_n/2$ (c.o.m.), $r=\tau_{n+1}/\tau_n$")
+        _spread(a6, uc_[pc], 1 - rc_[pc], "C1", r"$u=\gamma\tau_n/2$ (c.o.m.), $r=\tau_{n+1}/\tau_n$")
+        a6.set_xscale("log")
+        a6.set_yscale("log")
         a6.loglog(uu, 1 - our_r(uu, g, mu), "C3-", lw=1, label=r"eq. our-r")
         a6.loglog(uu, 1 - our_r(uu, g, mu, com=True), "C1--", lw=1, label=r"$1-2\mu u/(3\gamma)$")
         a6.set_xlabel(r"impact speed $u$  [$L/\sqrt{m/2k}$]")
         a6.set_ylabel(r"$1-r$")
         a6.set_title(r"(f) dissipation per bounce, two speed conventions", fontsize=8)
-        a6.legend(fontsize=5.5, loc="lower right")
+        handles = {}
+        for ax in (a5, a6):  # one legend for (e) and (f), below them: their data fill the panels
+            for h, lab in zip(*ax.get_legend_handles_labels()):
+                handles.setdefault(lab, h)
+        fig.legend(handles.values(), handles.keys(), loc="lower center", ncol=2, fontsize=5.5, frameon=False)
     if "od_n" in ds:
         n, w = ds["od_n"].values, ds["od_y_minus_yeq"].values
         g = float(ds.attrs["od_gamma"])
@@ -670,7 +706,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a4.set_title(r"(d) monotone approach from below; $r_{eff}=%.3f$" % ds.attrs["od_r_eff"], fontsize=8)
         a4.legend(fontsize=6)
     fig.suptitle("restitution: sec. 8 and eq. our-r (units: lengths $L$, times $\\sqrt{m/2k}$)", fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     save(fig, outputs)
 
 
