@@ -38,7 +38,7 @@ import xarray as xr
 from mpmath import mp
 
 from ..analysis.anomalies import construct_contact, minimum_sticky_energy
-from ..kinds import DETACH, GRAZING, KIND_NAMES, STICKY_START
+from ..kinds import DETACH, GRAZING, IMPACT, KIND_NAMES, STICKY_START
 from ..exact.events import XN_ULPS, contact_window
 from ..exact.flight import EPS
 from ..model import Deviations, Parameters, State
@@ -47,7 +47,7 @@ from ..simulate import simulate
 from ..analysis.theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
                       sticky_onset, ydot_min_Esticky)
 from . import base
-from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, variable
+from .base import BEYOND, PAPER, Check, Experiment, Falsifier, Verdict, claim, judge, on_named, variable
 
 NAME = "sticky-lemmas"
 MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
@@ -68,6 +68,11 @@ def sticky_run(gamma, mu, alpha, t_max=math.inf):
     if len(tr) >= 2 and tr.kind[1] == DETACH:
         return float(tr.t[1]), float(tr.energy_excess[0] - tr.energy_excess[1]), tr
     return math.inf, math.nan, tr
+
+
+def zero_alpha_state(gamma: float, mu: float) -> Deviations:
+    """The sticky-line state with Ydot_s = 4 gamma mu exactly (alpha_s = 0: F = F' = 0), without rounding in alpha."""
+    return Deviations(0.0, 0.0, 2.0 * mu * gamma, 2.0 * gamma - 4.0 * mu * mu * gamma)
 
 
 def sticky_ic_family(spec: dict) -> xr.Dataset:
@@ -242,12 +247,54 @@ class Measurements(base.Measurements):
         return _dataset(self)
 
 
+# --------------------------------------------------------------------------- falsifiers
+
+def _emin_one_plus_mu2():
+    """eq. min-sticky-energy with 1 + mu^2 for 1 + 2 mu^2 (and 3 - mu^2 for 3 - 2 mu^2): mu^2 dropped by half."""
+    real = min_sticky_energy
+    return {"min_sticky_energy": lambda gamma, mu: real(gamma, mu / SQRT2)}
+
+
+def _minimiser_one_plus_mu2():
+    """eq. ydot-min-Esticky with 1 + mu^2 for 1 + 2 mu^2 in both denominators."""
+    return {"ydot_min_Esticky": lambda gamma, mu: (4 * gamma * mu / (1 + mu * mu), 4 * gamma / (1 + mu * mu))}
+
+
+def _shifted_runs(gamma_factor=1.0, mu_added=0.0, duration_factor=1.0):
+    """sticky_run swapped for one on shifted parameters, or whose recorded durations are scaled."""
+    real = sticky_run
+
+    def run(gamma, mu, alpha, t_max=math.inf):
+        d, diss, tr = real(gamma * gamma_factor, mu + mu_added, alpha, t_max)
+        return d * duration_factor, diss, tr
+    return {"sticky_run": run}
+
+
+def _eps_star_high():
+    """eq. eps* 1e-6 relative high (a tangency root found to 1e-6)."""
+    real = eps_star
+    return {"eps_star": lambda gamma, mu: (real(gamma, mu)[0] * (1 + 1e-6), real(gamma, mu)[1])}
+
+
+def _mc_sticky(ds):
+    """One Monte-Carlo run with two sticky starts (a classifier taking near-tangential impacts for sticky onsets)."""
+    counts = ds["counts"].values.copy()
+    counts[0, STICKY_START] += 2
+    counts[0, IMPACT] -= 2
+    ds["counts"] = (ds["counts"].dims, counts, ds["counts"].attrs)
+    return ds
+
+
+EMIN_WRONG = Falsifier("eq. min-sticky-energy with 1 + mu^2 for 1 + 2 mu^2 and 3 - mu^2 for 3 - 2 mu^2",
+                       patch=_emin_one_plus_mu2)
+
+
 # --------------------------------------------------------------------------- the claims
 
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "min-energy", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def min_energy(m, spec) -> Verdict:
     a = m.minimum
     tol_e = 1e-9
@@ -263,7 +310,8 @@ def min_energy(m, spec) -> Verdict:
         verdict=judge(bool(np.all(a.rel_e <= tol_e))))
 
 
-@claim(CLAIMS, "min-energy-minimiser", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy-minimiser", PAPER, "lem:Min-sticky-energy",
+       falsifier=Falsifier("eq. ydot-min-Esticky with 1 + mu^2 for 1 + 2 mu^2", patch=_minimiser_one_plus_mu2))
 def min_energy_minimiser(m, spec) -> Verdict:
     a = m.minimum
     tol_x = 3e-5
@@ -280,7 +328,7 @@ def min_energy_minimiser(m, spec) -> Verdict:
                            and np.all(np.abs(a.acc_num) <= tol_x * m.gam))))
 
 
-@claim(CLAIMS, "no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def no_anomaly_below_min_energy(m, spec) -> Verdict:
     c, mc = m.constructions, m.mc
     mc_anom = int(mc["counts"].values[:, [GRAZING, STICKY_START]].sum())
@@ -309,7 +357,9 @@ def no_anomaly_below_min_energy(m, spec) -> Verdict:
                       and bool(np.all(c.kind[..., 0] == STICKY_START)) and bool(np.all(c.kind[..., 1] == GRAZING))))
 
 
-@claim(CLAIMS, "duration-bounded-below", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "duration-bounded-below", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("sticky durations recorded 1 % short (detach 1 % early)",
+                           patch=lambda: _shifted_runs(duration_factor=0.99)))
 def duration_bounded_below(m, spec) -> Verdict:
     d = m.durations
     finite = np.isfinite(d.durations)
@@ -329,7 +379,9 @@ def duration_bounded_below(m, spec) -> Verdict:
         verdict=judge(ok and bool(np.all(min_dur > 0))))
 
 
-@claim(CLAIMS, "onset-expansion", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "onset-expansion", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the sticky phase simulated at gamma 1 % above the gamma of the expansion",
+                           patch=lambda: _shifted_runs(gamma_factor=1.01)))
 def onset_expansion(m, spec) -> Verdict:
     x = m.expansion
     tol_slope = 3 * x.rel_next * x.zeta[-1]
@@ -348,7 +400,8 @@ def onset_expansion(m, spec) -> Verdict:
         verdict=judge(abs(x.slope - 2) <= tol_slope and abs(x.coef_measured / x.coef_expected - 1) <= tol_coef))
 
 
-@claim(CLAIMS, "infinite-sticky-events", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "infinite-sticky-events", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the closed-form eps* 1e-6 relative high (its tangency root found to 1e-6)", patch=_eps_star_high))
 def infinite_sticky_events(m, spec) -> Verdict:
     eps_cf, eps_bis = m.durations.eps_cf, m.threshold.eps_bis
     sel = np.isfinite(eps_cf) & (eps_cf > 0)
@@ -369,7 +422,9 @@ def infinite_sticky_events(m, spec) -> Verdict:
         verdict=judge(bool(np.all(rel_c[sel] <= tol_c[sel]) and np.all(eps_bis[m.mus > 0] > 0))))
 
 
-@claim(CLAIMS, "infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound")
+@claim(CLAIMS, "infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound",
+       falsifier=Falsifier("every sticky phase simulated with mu + 0.01 (the mu = 0 runs at fig. rigid-fall's damping)",
+                           patch=lambda: _shifted_runs(mu_added=0.01)))
 def infinite_sticky_events_ends(m, spec) -> Verdict:
     m0 = [sticky_run(0.01, 0.0, r * 0.01, t_max=200.0)[0] for r in (1.0, 0.1)]
     m_over = [sticky_run(0.01, 2.0, r * 0.01)[0] for r in (1.0, 1e3)]
@@ -387,14 +442,16 @@ def infinite_sticky_events_ends(m, spec) -> Verdict:
                       and all(d == math.inf for d in m_over)))
 
 
-@claim(CLAIMS, "zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the edge state off the sticky line by alpha_s = -1e-4 gamma (F' > 0: the lower mass lifts off)",
+                           patch=lambda: {"zero_alpha_state": lambda gamma, mu: onset(gamma, mu, -1e-4 * gamma)}))
 def zero_alpha_keeps_contact(m, spec) -> Verdict:
     """The boundary alpha_s = 0: F = F' = 0, F'' = -gamma < 0 -- contact must continue (eq. cond_di_distacco is strict)."""
     edge = []
     for g, mu in m.pairs:
         if mu <= 0:
             continue
-        d0 = Deviations(0.0, 0.0, 2.0 * mu * g, 2.0 * g - 4.0 * mu * mu * g)  # Ydot = 4 gamma mu exactly
+        d0 = zero_alpha_state(g, mu)
         want = "sticky_forever" if eps_star(g, mu)[0] > 0 else "detach"
         try:
             tr0 = simulate(Parameters(g, mu), d0, max_events=5, t_max=50.0)
@@ -422,7 +479,9 @@ def zero_alpha_keeps_contact(m, spec) -> Verdict:
         verdict=judge(not bad))
 
 
-@claim(CLAIMS, "finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev")
+@claim(CLAIMS, "finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev",
+       falsifier=Falsifier("one Monte-Carlo run with two sticky starts among its events (a classifier taking "
+                           "near-tangential impacts for sticky onsets)", on_named(MONTE_CARLO, _mc_sticky)))
 def finitely_many_sticky_events(m, spec) -> Verdict:
     f, mc = m.family, m.mc
     mc_sticky_max = int(mc["counts"].values[:, STICKY_START].max())
@@ -556,7 +615,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-@claim(CLAIMS, "min-energy-above-equilibrium", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy-above-equilibrium", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def min_energy_above_equilibrium(m, spec) -> Verdict:
     """E_min > E_m for every finite mu; they coincide only as mu -> inf (the remark after the lemma)."""
     g = float(spec["emin_gamma"])
