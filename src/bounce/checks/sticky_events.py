@@ -158,7 +158,7 @@ def measure(spec: dict, inputs=()) -> SimpleNamespace:
             measured=f"{starts.size} sticky events ({', '.join(tr.kind_names[:4])}, ...; stop {tr.stop_reason}); "
                      f"E(s_1) - E_m = {excess_1 / gamma**2:.6g} gamma^2, E_min - E_m = {emin_excess / gamma**2:.6g} "
                      f"gamma^2, D = {D / gamma**2:.4g} gamma^2 (at alpha_s = {alpha_D / gamma:.4g} gamma; D/mu = "
-                     f"{D / mu / gamma**2:.4g} gamma^2: the bound grows like 1/mu), bound {bound:.6g}; dissipated per "
+                     f"{D / mu / gamma**2:.4g} gamma^2: at a fixed E(s_1) the bound grows like 1/mu), bound {bound:.6g}; dissipated per "
                      f"sticky event {[round(d / gamma**2, 6) for d in drops]} gamma^2, relative to D - 1: "
                      f"{[float(f'{d / D - 1:.2g}') for d in drops]}"
                      + ("" if math.isfinite(D) else "; no onset with E <= E(s_1) has a finite sticky phase at this mu "
