@@ -63,3 +63,13 @@ def test_sticky_dissipation_against_an_independent_integration():
             A, v = matrix([[0, 1], [mpf(-1) / 2, -mpf(mu)]]), matrix([4 * g - 2 * mu * ydot_s, ydot_s])
             exact = float(mpf(mu) / 2 * quad(lambda t: (expm(A * t) * v)[1] ** 2, [0, mpf(t_d) / 2, t_d]))
         assert abs(diss - exact) <= 10 * 1e-16 / (mu * t_d) * exact, (mu, diss, exact)
+
+
+def test_count_bound_is_tested_at_its_least_value():
+    """Each mu > 0 run starts at the onset of least dissipation: its sticky event dissipates D itself and its bound is 2
+    to 1e-3, the least a run's own onset allows (the detach is on the sticky line, E(t_d) >= E_min): one sticky event
+    more than the generic one and a third would refute it."""
+    m = se.measure(_spec(mu=[1e-3, 0.1]))
+    assert all(v.verdict == REPRODUCED for v in m.rows["sticky-count-bound"].values())
+    bounds = m.data["count_bound"].values
+    assert (m.data["sticky_count"].values == 1).all() and ((bounds >= 2.0) & (bounds < 2.001)).all(), bounds

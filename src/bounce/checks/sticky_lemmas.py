@@ -47,7 +47,7 @@ from ..simulate import simulate
 from ..analysis.theory import (SQRT2, E_min, eps_star, min_sticky_energy, sticky_duration_infimum, sticky_fundamental,
                       sticky_onset, ydot_min_Esticky)
 from . import base
-from .base import BEYOND, PAPER, Check, Experiment, Verdict, claim, judge, variable
+from .base import BEYOND, PAPER, Check, Experiment, Falsifier, Verdict, claim, judge, on_named, variable
 
 NAME = "sticky-lemmas"
 MONTE_CARLO = "contact-monte-carlo"  # the sweep whose gathered file holds the Monte Carlo (config sweeps)
@@ -70,26 +70,41 @@ def sticky_run(gamma, mu, alpha, t_max=math.inf):
     return math.inf, math.nan, tr
 
 
+def zero_alpha_state(gamma: float, mu: float) -> Deviations:
+    """The sticky-line state with Ydot_s = 4 gamma mu exactly (alpha_s = 0: F = F' = 0), without rounding in alpha."""
+    return Deviations(0.0, 0.0, 2.0 * mu * gamma, 2.0 * gamma - 4.0 * mu * mu * gamma)
+
+
 def sticky_ic_family(spec: dict) -> xr.Dataset:
     """Experiment ``sticky-ic-family``: eq. sticky-ic for every eps of ``sticky_ic_eps`` (gamma, mu =
     ``sticky_ic_params``) followed to t = ``horizon`` (at most ``horizon_events`` events): its sticky onsets,
     the end of its last sticky phase and why the run stopped."""
     g, m = map(float, spec["sticky_ic_params"])
     p = Parameters(g, m)
-    counts, last_end, stops = [], [], []
+    threshold = min_sticky_energy(g, m) - E_min(g)  # E_min - E_m (Lemma Min-sticky-energy)
+    counts, last_end, stops, least, last, below = [], [], [], [], [], []
     for e in (float(v) for v in spec["sticky_ic_eps"]):
         tr = simulate(p, State.sticky_ic(p, eps=e), max_events=int(spec["horizon_events"]), t_max=float(spec["horizon"]))
         st = np.flatnonzero(tr.kind == STICKY_START)
         det = np.flatnonzero(tr.kind == DETACH)
+        fell = np.flatnonzero(tr.energy_excess < threshold)
         counts.append(int(st.size))
         last_end.append(float(tr.t[det[-1]]) if det.size else (math.inf if st.size else math.nan))
         stops.append(tr.stop_reason)
+        least.append(float(tr.energy_excess[st].min()) / threshold if st.size else math.nan)
+        last.append(int(st[-1]) if st.size else -1)
+        below.append(int(fell[0]) if fell.size else -1)
     return xr.Dataset({
         "eps": variable("run", np.array(spec["sticky_ic_eps"], dtype=float), "eps of eq. sticky-ic"),
         "sticky_count": variable("run", np.array(counts, dtype=np.int64), "sticky onsets up to the horizon"),
         "last_sticky_end": variable("run", np.array(last_end), "end of the last sticky phase",
                                     comment="inf: it never ends; nan: no sticky phase"),
         "stop_reason": variable("run", np.array(stops, dtype=object), "why the run stopped"),
+        "least_sticky_energy": variable("run", np.array(least), "least (E - E_m)/(E_min - E_m) at a sticky onset",
+                                        comment="nan: no sticky onset"),
+        "last_sticky": variable("run", np.array(last, dtype=np.int64), "index of the last sticky onset (-1: none)"),
+        "first_below": variable("run", np.array(below, dtype=np.int64),
+                                "first event with E - E_m < E_min - E_m (-1: not within the horizon)"),
     }, attrs={"title": "eq. sticky-ic followed to the horizon (Theorem Finite-number-sticky-ev)", "gamma": g, "mu": m,
               "horizon": float(spec["horizon"])})
 
@@ -235,11 +250,56 @@ class Measurements(base.Measurements):
                                mu=float(fam.attrs["mu"]), horizon=float(fam.attrs["horizon"]),
                                counts=[int(c) for c in fam["sticky_count"].values],
                                last_end=[float(t) for t in fam["last_sticky_end"].values],
-                               stop=[str(r) for r in fam["stop_reason"].values])
+                               stop=[str(r) for r in fam["stop_reason"].values],
+                               least=fam["least_sticky_energy"].values, last=fam["last_sticky"].values,
+                               below=fam["first_below"].values)
 
     @cached_property
     def data(self) -> xr.Dataset:
         return _dataset(self)
+
+
+# --------------------------------------------------------------------------- falsifiers
+
+def _emin_one_plus_mu2():
+    """eq. min-sticky-energy with 1 + mu^2 for 1 + 2 mu^2 (and 3 - mu^2 for 3 - 2 mu^2): mu^2 dropped by half."""
+    real = min_sticky_energy
+    return {"min_sticky_energy": lambda gamma, mu: real(gamma, mu / SQRT2)}
+
+
+def _minimiser_one_plus_mu2():
+    """eq. ydot-min-Esticky with 1 + mu^2 for 1 + 2 mu^2 in both denominators."""
+    return {"ydot_min_Esticky": lambda gamma, mu: (4 * gamma * mu / (1 + mu * mu), 4 * gamma / (1 + mu * mu))}
+
+
+def _shifted_runs(gamma_factor=1.0, mu_added=0.0, duration_factor=1.0):
+    """sticky_run swapped for one on shifted parameters, or whose recorded durations are scaled."""
+    real = sticky_run
+
+    def run(gamma, mu, alpha, t_max=math.inf):
+        d, diss, tr = real(gamma * gamma_factor, mu + mu_added, alpha, t_max)
+        return d * duration_factor, diss, tr
+    return {"sticky_run": run}
+
+
+def _eps_star_high():
+    """eq. eps* 1e-6 relative high (a tangency root found to 1e-6)."""
+    real = eps_star
+    return {"eps_star": lambda gamma, mu: (real(gamma, mu)[0] * (1 + 1e-6), real(gamma, mu)[1])}
+
+
+def _second_onset_below_emin(ds):
+    """The first family member with one more sticky onset, at E - E_m = 0.99 (E_min - E_m), after its first."""
+    for name, value in (("sticky_count", ds["sticky_count"].values[0] + 1), ("least_sticky_energy", 0.99),
+                        ("last_sticky", max(int(ds["last_sticky"].values[0]), 0) + 2)):
+        values = ds[name].values.copy()
+        values[0] = value
+        ds[name] = (ds[name].dims, values, ds[name].attrs)
+    return ds
+
+
+EMIN_WRONG = Falsifier("eq. min-sticky-energy with 1 + mu^2 for 1 + 2 mu^2 and 3 - mu^2 for 3 - 2 mu^2",
+                       patch=_emin_one_plus_mu2)
 
 
 # --------------------------------------------------------------------------- the claims
@@ -247,7 +307,7 @@ class Measurements(base.Measurements):
 CLAIMS: list = []
 
 
-@claim(CLAIMS, "min-energy", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def min_energy(m, spec) -> Verdict:
     a = m.minimum
     tol_e = 1e-9
@@ -263,7 +323,8 @@ def min_energy(m, spec) -> Verdict:
         verdict=judge(bool(np.all(a.rel_e <= tol_e))))
 
 
-@claim(CLAIMS, "min-energy-minimiser", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy-minimiser", PAPER, "lem:Min-sticky-energy",
+       falsifier=Falsifier("eq. ydot-min-Esticky with 1 + mu^2 for 1 + 2 mu^2", patch=_minimiser_one_plus_mu2))
 def min_energy_minimiser(m, spec) -> Verdict:
     a = m.minimum
     tol_x = 3e-5
@@ -280,7 +341,7 @@ def min_energy_minimiser(m, spec) -> Verdict:
                            and np.all(np.abs(a.acc_num) <= tol_x * m.gam))))
 
 
-@claim(CLAIMS, "no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "no-anomaly-below-min-energy", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def no_anomaly_below_min_energy(m, spec) -> Verdict:
     c, mc = m.constructions, m.mc
     mc_anom = int(mc["counts"].values[:, [GRAZING, STICKY_START]].sum())
@@ -309,7 +370,9 @@ def no_anomaly_below_min_energy(m, spec) -> Verdict:
                       and bool(np.all(c.kind[..., 0] == STICKY_START)) and bool(np.all(c.kind[..., 1] == GRAZING))))
 
 
-@claim(CLAIMS, "duration-bounded-below", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "duration-bounded-below", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("sticky durations recorded 1 % short (detach 1 % early)",
+                           patch=lambda: _shifted_runs(duration_factor=0.99)))
 def duration_bounded_below(m, spec) -> Verdict:
     d = m.durations
     finite = np.isfinite(d.durations)
@@ -329,7 +392,9 @@ def duration_bounded_below(m, spec) -> Verdict:
         verdict=judge(ok and bool(np.all(min_dur > 0))))
 
 
-@claim(CLAIMS, "onset-expansion", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "onset-expansion", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the sticky phase simulated at gamma 1 % above the gamma of the expansion",
+                           patch=lambda: _shifted_runs(gamma_factor=1.01)))
 def onset_expansion(m, spec) -> Verdict:
     x = m.expansion
     tol_slope = 3 * x.rel_next * x.zeta[-1]
@@ -348,7 +413,8 @@ def onset_expansion(m, spec) -> Verdict:
         verdict=judge(abs(x.slope - 2) <= tol_slope and abs(x.coef_measured / x.coef_expected - 1) <= tol_coef))
 
 
-@claim(CLAIMS, "infinite-sticky-events", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "infinite-sticky-events", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the closed-form eps* 1e-6 relative high (its tangency root found to 1e-6)", patch=_eps_star_high))
 def infinite_sticky_events(m, spec) -> Verdict:
     eps_cf, eps_bis = m.durations.eps_cf, m.threshold.eps_bis
     sel = np.isfinite(eps_cf) & (eps_cf > 0)
@@ -369,7 +435,9 @@ def infinite_sticky_events(m, spec) -> Verdict:
         verdict=judge(bool(np.all(rel_c[sel] <= tol_c[sel]) and np.all(eps_bis[m.mus > 0] > 0))))
 
 
-@claim(CLAIMS, "infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound")
+@claim(CLAIMS, "infinite-sticky-events-ends", BEYOND, "lem:td-ts-bound",
+       falsifier=Falsifier("every sticky phase simulated with mu + 0.01 (the mu = 0 runs at fig. rigid-fall's damping)",
+                           patch=lambda: _shifted_runs(mu_added=0.01)))
 def infinite_sticky_events_ends(m, spec) -> Verdict:
     m0 = [sticky_run(0.01, 0.0, r * 0.01, t_max=200.0)[0] for r in (1.0, 0.1)]
     m_over = [sticky_run(0.01, 2.0, r * 0.01)[0] for r in (1.0, 1e3)]
@@ -387,14 +455,16 @@ def infinite_sticky_events_ends(m, spec) -> Verdict:
                       and all(d == math.inf for d in m_over)))
 
 
-@claim(CLAIMS, "zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound")
+@claim(CLAIMS, "zero-alpha-keeps-contact", PAPER, "lem:td-ts-bound",
+       falsifier=Falsifier("the edge state off the sticky line by alpha_s = -1e-4 gamma (F' > 0: the lower mass lifts off)",
+                           patch=lambda: {"zero_alpha_state": lambda gamma, mu: onset(gamma, mu, -1e-4 * gamma)}))
 def zero_alpha_keeps_contact(m, spec) -> Verdict:
     """The boundary alpha_s = 0: F = F' = 0, F'' = -gamma < 0 -- contact must continue (eq. cond_di_distacco is strict)."""
     edge = []
     for g, mu in m.pairs:
         if mu <= 0:
             continue
-        d0 = Deviations(0.0, 0.0, 2.0 * mu * g, 2.0 * g - 4.0 * mu * mu * g)  # Ydot = 4 gamma mu exactly
+        d0 = zero_alpha_state(g, mu)
         want = "sticky_forever" if eps_star(g, mu)[0] > 0 else "detach"
         try:
             tr0 = simulate(Parameters(g, mu), d0, max_events=5, t_max=50.0)
@@ -422,27 +492,41 @@ def zero_alpha_keeps_contact(m, spec) -> Verdict:
         verdict=judge(not bad))
 
 
-@claim(CLAIMS, "finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev")
+@claim(CLAIMS, "finitely-many-sticky-events", PAPER, "thm:Finite-number-sticky-ev",
+       falsifier=Falsifier("the eps = 0 member of the sticky-ic family recorded with a second sticky onset at "
+                           "E - E_m 1 % below E_min - E_m (after its sticky phase)", on_named("sticky-ic-family",
+                                                                                       _second_onset_below_emin)))
 def finitely_many_sticky_events(m, spec) -> Verdict:
+    """What a finite run can show of the theorem: its proof's two steps (no sticky onset below E_min; a sticky event
+    is finite or the run sticks for ever), the count (one at most: a second onset is non-generic), and, in a run
+    whose energy falls below E_min within the horizon, that the count is final (no onset after)."""
     f, mc = m.family, m.mc
     mc_sticky_max = int(mc["counts"].values[:, STICKY_START].max())
     ends = all(not math.isinf(t) or s == "sticky_forever" for t, s in zip(f.last_end, f.stop))
-    ok = mc_sticky_max == 0 and max(f.counts) <= 1 and ends
+    tol = 1e-12  # E - E_m of float64 states relative to E_min - E_m ~ 2 gamma^2 (as no-anomaly-below-min-energy)
+    above = bool(np.all(np.isnan(f.least) | (f.least >= 1 - tol)))
+    after = (f.below >= 0) & (f.last > f.below)
+    final = [bool(b >= 0) for b in f.below]
+    ok = mc_sticky_max == 0 and max(f.counts) <= 1 and ends and above and not after.any()
     return Verdict(
         claim="Every solution has at most finitely many sticky events; more than one is non-generic",
-        paper_ref="thm:Finite-number-sticky-ev",
+        paper_ref="thm:Finite-number-sticky-ev (proof: lem:Min-sticky-energy, lem:td-ts-bound)",
         computed=f"sticky_start counts: Monte-Carlo ({mc.sizes['item']} runs x {int(mc.attrs['events'])} events, "
                  f"sweep {MONTE_CARLO}) and eq. sticky-ic (experiment sticky-ic-family) up to t = {f.horizon:g} "
-                 f"(gamma = {f.gamma}, mu = {f.mu}, Ydot0 = -0.1) for eps in {f.eps}",
+                 f"(gamma = {f.gamma}, mu = {f.mu}, Ydot0 = -0.1) for eps in {f.eps}: counts, the energy at each "
+                 "sticky onset, the first event with E < E_min",
         expected="no sticky event in the Monte Carlo (sticky contacts are non-generic), at most one in the family "
                  "(a second onset needs the flight from a detach state to land with "
                  "x = x' = x'' = 0: three conditions on two free parameters, which random and one-parameter families "
-                 "miss); every run's last sticky phase ends, or the run stays in contact for ever (sticky_forever)",
+                 "miss); every sticky onset at E >= E_min and none after the energy falls below E_min (then the count "
+                 "is final); every run's last sticky phase ends, or the run stays in contact for ever (sticky_forever)",
         measured=f"Monte-Carlo max per run {mc_sticky_max}; sticky-ic counts {f.counts} (last sticky phase ends at "
-                 f"{['-' if math.isnan(t) else round(t, 4) for t in f.last_end]}; runs end by {sorted(set(f.stop))}). "
-                 "The theorem's count bound 1 + (E(s_1) - E_min)/D, on runs with several sticky events, is claim "
-                 "sticky-events/sticky-count-bound",
-        tolerance="exact counts",
+                 f"{['-' if math.isnan(t) else round(t, 4) for t in f.last_end]}; runs end by {sorted(set(f.stop))}); "
+                 f"least (E - E_m)/(E_min - E_m) at an onset {[round(float(v), 6) for v in f.least]}; E < E_min from "
+                 f"event {f.below.tolist()} (-1: not within the horizon: the count is final for {sum(final)}/"
+                 f"{len(final)} runs); onsets after it: {int(after.sum())}. The theorem's count bound "
+                 "1 + (E(s_1) - E_min)/D is claim sticky-events/sticky-count-bound",
+        tolerance=f"exact counts; onset energies >= (1 - {tol:g}) E_min (rounding of E - E_m for float64 states)",
         verdict=judge(ok))
 
 
@@ -556,7 +640,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     save(fig, outputs)
 
 
-@claim(CLAIMS, "min-energy-above-equilibrium", PAPER, "lem:Min-sticky-energy")
+@claim(CLAIMS, "min-energy-above-equilibrium", PAPER, "lem:Min-sticky-energy", falsifier=EMIN_WRONG)
 def min_energy_above_equilibrium(m, spec) -> Verdict:
     """E_min > E_m for every finite mu; they coincide only as mu -> inf (the remark after the lemma)."""
     g = float(spec["emin_gamma"])
