@@ -21,7 +21,10 @@ numbers as LaTeX assigns them (1 Introduction ... 4 Absence of Inelastic Collaps
 texts number the sections from the collapse part on one higher (sec. 5 = 4.3 here, sec. 8.1 = 7.1, sec. 9 = 8).
 ``label`` is the ``\\label`` of the equation, lemma or theorem the text belongs to (or follows), else of its
 section; empty where the section has none (the abstract, the introduction).  Sources: the referee's re-read
-(notes/errata-reread.md, CONFIRMED items only) and the erratum rows that predate it.
+(notes/errata-reread.md, CONFIRMED items only), a second independent re-read of the whole source (its CONFIRMED items:
+intro-restitution-increasing, sticky-dissipated-bound, td-drop-criterion, xddot-squared-dots, giorgio-parentheses,
+english-continous, bib-duran-title; three SUSPECTED items, the free-fall time T_psi of eq. char-times, the reference
+of l. 1132 and the t_0 = 0 convention, are left out until settled) and the erratum rows that predate them.
 """
 
 from __future__ import annotations
@@ -57,7 +60,7 @@ ASYMPTOTIC, PROOF_STATIC, PROOF_MAIN = ("5 Asymptotic State", "5.1 Proof of Theo
                                         "5.2 Proof of the Main Theorem")
 NONGENERIC = "6 Non-Genericity of Zero-Velocity Contacts"
 RESTITUTION = "7.1 On the Nature of the Restitution Coefficient"
-DISCUSSION, APPENDIX = "8 Discussion and Conclusions", "9 Appendix"
+DISCUSSION, APPENDIX, REFERENCES = "8 Discussion and Conclusions", "9 Appendix", "References"
 
 REGISTER: tuple[Erratum, ...] = (
     # ------------------------------------------------------------------ wrong formulas
@@ -114,6 +117,11 @@ REGISTER: tuple[Erratum, ...] = (
     Erratum("tau-simeq-xdot", NOCOLLAPSE, "eq:tauOXdot", 705, r"$\tau_{n}\simeq\dot{X}_{n}$",
             r"$\tau_{n}\simeq2\dot{X}_{n}/|\ddot{X}_{\infty}|$ (or $\tau_{n}\asymp\dot{X}_{n}$: only the order is used)",
             FORMULA, "the display just above gives tau_n ~ 2 Xdot_n/|Xddot_inf|; the two are only of the same order"),
+    Erratum("sticky-dissipated-bound", STICKY, "thm:Finite-number-sticky-ev", 486, r"$b=a/4,$ $D=C/2$",
+            r"$b=\mu a/8,$ $D=\mu C/4$ (the energy is the rate (mu/2) times the integral of ydot^2, bounded by at^3 - C eps t)",
+            FORMULA, "the printed b, D integrate the bound of l. 483 a second time and drop the damping factor; sympy: "
+            "int_0^t ydot^2 = eps^2 t - 2 gamma eps t^2 + (4 gamma^2/3 + O(eps)) t^3 (re-read 2, N2); the argument "
+            "survives (any positive bound does)"),
     # ------------------------------------------------------------------ wrong statements
     Erratum("main-thm-upper-mass", MODEL, "thm:main_thm", 280, "damped harmonic oscillations",
             "relaxes to equilibrium (with damped oscillations if mu < sqrt 2)", STATEMENT,
@@ -165,6 +173,16 @@ REGISTER: tuple[Erratum, ...] = (
             "increasing only there)", STATEMENT,
             "iterated: sequences with x_0 > 1/(2c) fall below z_n; the lemma itself holds (Xdot_n -> 0 where it is used)",
             ("appendix/giorgio2-comparison",)),
+    Erratum("intro-restitution-increasing", INTRO, "", 96, "an increasing function of the impact velocity",
+            "a decreasing function of the impact velocity", STATEMENT,
+            "r -> 1 as u -> 0 and r < 1 otherwise (the same sentence), and the paper's own r = 1 - (u/U)^(1/5) "
+            "(eq. onefifth-rest-coeff) has dr/du < 0"),
+    Erratum("td-drop-criterion", RESTITUTION, "eq:char-times", 1214,
+            r"shorter than the characteristic dissipation time $T_{d}$",
+            "shorter than the energy's e-folding time 1/(2 mu) = T_d/2", STATEMENT,
+            "fig. rigid-fall (gamma = mu = 0.01, T_d = 100): every macroscopic flight is shorter than T_d from the first "
+            "(66.5, 64.3, 62.1, 56.3, 42.5, ...: bounce.simulate); the drop of the apex comes between the 4th and 6th "
+            "flight, where they fall below 1/(2 mu) = 50 (re-read 2, N3; see td-energy-efolding)"),
     # ------------------------------------------------------------------ cross-references
     Erratum("xref-static-equilibrium", STICKY, "lem:td-ts-bound", 444,
             r"removed from the static equilibrium (\ref{thm:static-equilibrium})",
@@ -212,6 +230,13 @@ REGISTER: tuple[Erratum, ...] = (
     Erratum("giorgio-induction-a", APPENDIX, "eq:ineq1", 1481, r"1-(a+\epsilon)x_{n}\leq",
             r"1-(\alpha+\epsilon)x_{n}\leq (and \alpha for a in the induction)", TYPO,
             "sympy: the induction step closes only for a = alpha, the limit of alpha_n", ("algebra/giorgio-induction",)),
+    Erratum("xddot-squared-dots", PROOF_MAIN, "thm:main_thm", 978, r"\stackrel{..}{X_{n}^{2}}", r"\ddot{X}_{n}^{2}",
+            TYPO, "the dots belong on X_n, not on its square: tau_n ~ 2 Xdot_n/|Xddot_n| gives alpha_n = 4 Delta_n/Xddot_n^2 "
+            "-> mu/(3 gamma), the value printed on l. 979"),
+    Erratum("giorgio-parentheses", APPENDIX, "lem:Giorgio's", 1489, r"$x/1+(a-\epsilon)x$",
+            r"$x/(1+(\alpha-\epsilon)x)$", TYPO,
+            "as printed it reads x + (a - eps) x, not the map x_{N+k}/(1 + (a - eps) x_{N+k}) of l. 1488 (so too "
+            "1/k(alpha - eps) on l. 1483, 1490 for 1/(k (alpha - eps)))"),
     # ------------------------------------------------------------------ typos: English
     Erratum("english-explicitely", ABSTRACT, "", 27, "explicitely", "explicitly", TYPO, "spelling"),
     Erratum("english-facetes", INTRO, "", 66, "facetes", "facets", TYPO, "spelling"),
@@ -230,6 +255,10 @@ REGISTER: tuple[Erratum, ...] = (
             "past participle of 'lead' ('we are lead', l. 1204-1205)"),
     Erratum("english-the-is-no", RESTITUTION, "fig:very_rigid_poincare_overdamped", 1331, "the is no disordered",
             "there is no disordered", TYPO, "word"),
+    Erratum("english-continous", NONGENERIC, "sec:ZeroMeasure", 1136, "continous", "continuous", TYPO, "spelling"),
+    Erratum("bib-duran-title", REFERENCES, "", 1601, r"J. Duran, Sands, \emph{Powders, and Grains",
+            r"J. Duran, \emph{Sands, Powders, and Grains", TYPO,
+            "the book is 'Sands, Powders, and Grains'; as printed 'Sands,' reads as part of the author's name"),
 )
 
 
