@@ -186,8 +186,9 @@ class measure(Measurements):
         return data
 
 
-def _limit_rows(m, spec, key, claim_text, limit_of, symbol: str) -> dict:
-    """One row per scene: the limit L of q_n = value/``limit_of(sc)`` against 1; ``symbol`` names the value."""
+def _limit_rows(m, spec, key, claim_text, limit_of, symbol: str, note_of=lambda sc: "") -> dict:
+    """One row per scene: the limit L of q_n = value/``limit_of(sc)`` against 1; ``symbol`` names the value,
+    ``note_of(sc)`` adds to the expectation."""
     k = float(spec["limit_sigmas"])
     text, ref = LIMITS[key]
     out = {}
@@ -200,7 +201,7 @@ def _limit_rows(m, spec, key, claim_text, limit_of, symbol: str) -> dict:
             f"{sc.ctx}: q_n = {text} on the impacts n in [{lo:.4g}, {hi:.4g}] (n >= {spec['fit_n_min']}); limit by "
             "Richardson extrapolation (ln n/n and 1/n cancelled, bounce.analysis.fitting.richardson_ln) checked "
             "against the least-squares tail fit (bounce.analysis.fitting.tail_limit)",
-            f"L = 1 (lim {symbol} = {lim:.8g})",
+            f"L = 1 (lim {symbol} = {lim:.8g}{note_of(sc)})",
             f"L - 1 = {L - 1:+.3g} +- {err:.2g}, i.e. lim {symbol} = {L * lim:.8g} +- {err * abs(lim):.2g}" if ok else "no fit window (fewer than 20 impacts or less than a "
                                                               "factor 8 in n after fit_n_min)",
             f"|L - 1| <= {k:g} x error (the larger of the extrapolation's change when its points move x2 and its "
@@ -248,7 +249,8 @@ def xdddot_limit(m, spec) -> dict:
                            on_scenes(_rigid_flights)))
 def flight_constant(m, spec) -> dict:
     return _limit_rows(m, spec, "ntau", "tau_n ~ C/n with C = 1/(alpha gamma) = 3 (rho/gamma)^(b/(a+1))/mu (the "
-                       "linear law's 3/mu only for b = 0)", lambda sc: sc.C, "n tau_n")
+                       "linear law's 3/mu only for b = 0)", lambda sc: sc.C, "n tau_n",
+                       lambda sc: f"; the linear law's 3/mu = {3.0 / sc.mu:.6g}")
 
 
 def _stiffer_power_law() -> dict:
@@ -306,18 +308,17 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a_tau.axhline(1.0, color="k", lw=0.6)
     a_tau.set_ylim(0.0, 1.3)
     a_tau.set_xlabel(r"impact index $n$")
-    a_tau.set_ylabel(r"$n\tau_n/C$ (1)")
-    a_tau.set_title(r"(c) $n\tau_n/C$, $C=3(\rho/\gamma)^{b/(a+1)}/\mu$; dotted: the linear $3/\mu$ over $C$",
-                    fontsize=7)
+    a_tau.set_ylabel(r"$n\tau_n/C$,  $C=3(\rho/\gamma)^{b/(a+1)}/\mu$ (1)")
+    a_tau.set_title(r"(c) flight constant; dotted: the linear law's $3/\mu$ over $C$", fontsize=8)
     k = ds["probe_event"].values
     eps = np.finfo(float).eps
-    a_probe.semilogy(k, np.maximum(ds["probe_dt"].values, eps / 100), "o", ms=2, label=r"$|\Delta t_k|/t_k$")
+    a_probe.semilogy(k, np.maximum(ds["probe_dt"].values, eps / 100), "o", ms=2, label=r"$|\Delta t_k|/t_k$ (0 drawn at $\epsilon/100$)")
     a_probe.semilogy(k, np.maximum(ds["probe_dstate"].values, eps / 100), "s", ms=2,
                      label=r"$\max|\Delta(\dot x,\xi',\eta)|$ / state scale")
     a_probe.semilogy(k, float(ds.attrs["probe_ulps_per_event"]) * k * eps, "k--", lw=0.8,
                      label=rf"tolerance ${float(ds.attrs['probe_ulps_per_event']):g}\,k\,\epsilon$")
     a_probe.set_xlabel(r"event $k$")
-    a_probe.set_ylabel(r"relative difference (1; 0 drawn at $\epsilon/100$)")
+    a_probe.set_ylabel("relative difference (1)")
     a_probe.set_title(rf"(d) power law $a=b=0$, $\rho=1$ vs linear solver ($\gamma={float(ds.attrs['probe_gamma']):g}$, "
                       rf"$\mu={float(ds.attrs['probe_mu']):g}$)", fontsize=7)
     a_probe.legend(fontsize=5.5)
