@@ -52,6 +52,7 @@ from ..kinds import IMPACT
 from ..model import Deviations, Parameters, State
 from ..simulate import simulate
 from ..springs import spring_from_spec
+from . import base
 from .base import (
     BEYOND,
     NOT_CHECKABLE,
@@ -59,7 +60,6 @@ from .base import (
     PROBE_EVENTS,
     Check,
     Falsifier,
-    Measurements,
     Verdict,
     claim,
     judge,
@@ -108,11 +108,11 @@ def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
                          series=series, nsim=nsim, fit={},
                          ctx=(f"scene {name} (rho = {rho:g}, a = {a:g}, b = {b:g}, gamma = {gamma:g}, mu = {mu:g}; "
                               f"{nsim} events, stop: {at.get('stop_reason', '')})"))
-    for key, (nn, q) in series.items():
+    for key, (nn, q) in series.items():  # (L, err, first n, last n) on the impacts n >= fit_n_min
         sel = impact & (nn >= float(spec["fit_n_min"]))
-        ok = sel.sum() >= 20 and nn[sel][-1] >= 8.0 * nn[sel][0]
-        sc.fit[key] = limit_with_error(nn[sel], q[sel]) if ok else (math.nan, math.nan)
-        sc.fit[key] += (float(nn[sel][0]) if sel.any() else math.nan, float(nn[sel][-1]) if sel.any() else math.nan)
+        window = (float(nn[sel][0]), float(nn[sel][-1])) if sel.any() else (math.nan, math.nan)
+        ok = sel.sum() >= 20 and window[1] >= 8.0 * window[0]  # richardson_ln reaches down to n_top/8
+        sc.fit[key] = (limit_with_error(nn[sel], q[sel]) if ok else (math.nan, math.nan)) + window
     return sc
 
 
@@ -146,7 +146,7 @@ def linear_probe(spec: dict) -> SimpleNamespace:
                            k=np.arange(1, m + 1, dtype=float), n_impacts=int(np.sum(ln[4][:m] == IMPACT)))
 
 
-class measure(Measurements):
+class Measurements(base.Measurements):
     """Per-scene limits (:func:`_scene`) and the a = b = 0 probe (:func:`linear_probe`), each on first use."""
 
     @cached_property
@@ -329,4 +329,4 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
 
 TITLE = ("Discussion, on the power-law records: Xddot_n and Xdddot_n limits, the flight constant tau_n ~ C/n, "
          "a = b = 0 with rho = 1 against the linear solver")
-CHECK = Check(NAME, measure, tuple(CLAIMS), plot, TITLE)
+CHECK = Check(NAME, Measurements, tuple(CLAIMS), plot, TITLE)
