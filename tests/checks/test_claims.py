@@ -95,6 +95,7 @@ OVERRIDES = {
     "rigid-model-suffices": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
+    "nonlinear-records": {"linear_events": 40},
 }
 
 
@@ -187,7 +188,8 @@ def inputs_for(name: str) -> list:
                 "static-equilibrium": [s["ud"], s["od"], s["rest"]],
                 "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
                 "sticky-convergence": _real_sticky_inputs(), "paper-figures": [s["fall"], s["rest"]],
-                "nonlinear": [s[k] for k in NONLIN], "contact-non-generic": [sweep("contact-monte-carlo")],
+                "nonlinear": [s[k] for k in NONLIN], "nonlinear-records": [s[k] for k in NONLIN],
+                "contact-non-generic": [sweep("contact-monte-carlo")],
                 "sticky-lemmas": [sweep("contact-monte-carlo")],
                 "onefifth-rest-coeff": [sweep("hertz-restitution"), s["hertz"]],
                 "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),

@@ -325,3 +325,11 @@ def correction_decay(n: np.ndarray, q: np.ndarray, extra: np.ndarray | None = No
     variants = [profile(n >= mid)[0], profile(n <= math.sqrt(mid * hi))[0]]
     err = max((abs(v - p) for v in variants if math.isfinite(v)), default=math.nan)
     return p, err, L
+
+
+def limit_with_error(n: np.ndarray, q: np.ndarray) -> tuple[float, float]:
+    """(L, err): the Richardson limit of q_n (:func:`richardson_ln`: ln n/n and 1/n cancelled), err the larger of its
+    change when its points move by a factor 2 and its distance to the independent least-squares tail fit
+    (:func:`tail_limit`)."""
+    L, change = richardson_ln(n, q)
+    return L, max(change, abs(L - tail_limit(n, q)[0]))

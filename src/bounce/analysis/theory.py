@@ -402,6 +402,37 @@ def nonlin_alpha_limit(gamma: float, mu: float, rho: float, a: float, b: float) 
     return mu / (3.0 * gamma) * (gamma / rho) ** (b / (a + 1.0))
 
 
+def nonlin_contact_derivatives(xi, xidot, gamma: float, mu: float, rho: float, a: float, b: float):
+    """(x'', x''') at x = 0 from xi and xi' on the same side of the contact, for the power law of eq.
+    ``eq-motion-nonlin-psi-xi`` (the nonlinear :func:`contact_derivatives`; just after impact n: Xddot_n, Xdddot_n).
+
+    x = psi - xi with psi'' = -gamma, xi'' = -rho xi |xi|^a - 2 mu xi' |xi|^b:  x'' = -gamma - xi'' and
+    x''' = -xi''' = rho (a+1) |xi|^a xi' + 2 mu xi'' |xi|^b + 2 mu b xi'^2 |xi|^(b-1) sgn(xi).
+    At the static equilibrium (xi' = 0, rho |xi|^(a+1) = gamma) they are :func:`nonlin_contact_limits`."""
+    xi, xidot = np.asarray(xi, dtype=float), np.asarray(xidot, dtype=float)
+    w = np.abs(xi)
+    xidd = -rho * xi * w**a - 2.0 * mu * xidot * w**b
+    damping_slope = b * w ** (b - 1.0) * np.sign(xi) if b != 0.0 else 0.0
+    x3 = rho * (a + 1.0) * w**a * xidot + 2.0 * mu * xidd * w**b + 2.0 * mu * xidot**2 * damping_slope
+    return -gamma - xidd, x3
+
+
+def nonlin_contact_limits(gamma: float, mu: float, rho: float, a: float, b: float) -> tuple[float, float]:
+    """(lim Xddot_n, lim Xdddot_n) = (-2 gamma, 2 mu gamma (gamma/rho)^(b/(a+1))) (Discussion: the analogues of
+    eq. ``limitex3dot``; the linear law, rho = 1, a = b = 0, gives :func:`limitex3dot`)."""
+    return -2.0 * gamma, 2.0 * mu * gamma * (gamma / rho) ** (b / (a + 1.0))
+
+
+def nonlin_flight_constant(gamma: float, mu: float, rho: float, a: float, b: float) -> float:
+    """C of tau_n ~ C/n for the power-law spring (beyond the paper, from the Discussion's map): C = 1/(alpha gamma)
+    = 3 (rho/gamma)^(b/(a+1))/mu = 3/(mu |xi_eq|^b).
+
+    The time of flight eq. ``tau3`` with Xddot_n -> -2 gamma gives tau_n = Xdot_n/gamma + O(Xdot_n^2), and the map
+    eq. ``mappa`` with alpha = :func:`nonlin_alpha_limit` gives n Xdot_n -> 1/alpha (Lemma Giorgio's); so
+    n tau_n -> 1/(alpha gamma).  b = 0 (any a and rho) keeps Theorem main_thm's 3/mu."""
+    return 1.0 / (gamma * nonlin_alpha_limit(gamma, mu, rho, a, b))
+
+
 def nonlin_sticky_scaling(gamma: float, mu: float, rho: float, a: float, b: float) -> tuple[float, float]:
     """(mu_eff, c) such that the power-law spring's relaxation near equilibrium is eq. ``y-eq-sticky`` in the time
     c t with damping mu_eff (beyond the paper; :func:`sticky_modes` then applies).

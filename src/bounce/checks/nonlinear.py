@@ -57,7 +57,7 @@ from ..kinds import IMPACT, STICKY_START
 from ..model import Parameters, State
 from ..simulate import simulate
 from ..springs import spring_from_attrs, spring_from_spec
-from ..analysis.fitting import correction_decay, log_select, richardson_ln, spring_columns, tail_limit
+from ..analysis.fitting import correction_decay, limit_with_error, log_select, spring_columns
 from ..exact.flight import EPS
 from ..analysis.theory import nonlin_alpha_limit, nonlin_energy, nonlin_equilibrium_xi, nonlin_sticky_scaling
 from .base import (
@@ -140,7 +140,7 @@ def _scene(i: int, ds: xr.Dataset, spec: dict) -> SimpleNamespace:
     sc.L_alpha = _limit(n[imp], sc.q[imp], spring, int(spec["plot_points"])) if sc.fit_ok else nan3
     sc.L_flight = _limit(n[imp], sc.flight[imp], spring, int(spec["plot_points"])) if sc.fit_ok else nan3
     sc.q_tau = n * sc.tau * sc.alpha * gamma  # n tau_n alpha gamma -> 1 (tau_n ~ Xdot_n/gamma ~ 1/(alpha gamma n))
-    sc.L_tau = _limit_value(n[imp], sc.q_tau[imp]) if sc.fit_ok else (math.nan, math.nan)
+    sc.L_tau = limit_with_error(n[imp], sc.q_tau[imp]) if sc.fit_ok else (math.nan, math.nan)
     sc.spring = spring_from_attrs(a_)
     return sc
 
@@ -151,20 +151,12 @@ def _spring_columns(sc, t) -> np.ndarray:
     return np.column_stack(spring_columns(t * scale, mu_eff, 2))
 
 
-def _limit_value(n, q) -> tuple[float, float]:
-    """(L, err) of :func:`_limit`: Richardson extrapolation, err the larger of its change and its distance to the
-    tail fit."""
-    L_tail = tail_limit(n, q)[0]
-    L, err = richardson_ln(n, q)
-    return L, max(err, abs(L - L_tail))
-
-
 def _limit(n, q, spring, points: int) -> tuple[float, float, float, float]:
     """(L, err, p, p_err): L by Richardson extrapolation (:func:`bounce.analysis.fitting.richardson_ln`, ln n/n and 1/n
     cancelled), err the larger of its change when its points move by a factor 2 and its distance to the independent
     least-squares tail fit (:func:`bounce.analysis.fitting.tail_limit` from n[0] on); p, p_err: the correction's decay exponent
     (:func:`bounce.analysis.fitting.correction_decay` on ``points`` log-spaced impacts, the spring's relaxation fitted along)."""
-    L, err = _limit_value(n, q)
+    L, err = limit_with_error(n, q)
     s = log_select(n, n[0], n[-1], points)
     p, p_err, _ = correction_decay(n[s], q[s], spring[s])
     return L, err, p, p_err
