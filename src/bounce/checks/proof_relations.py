@@ -42,7 +42,10 @@ sp = lazy_import("sympy")
 def flight_spring(xi0, xid0, mu: float, t):
     """(xi, xi')(t) of the free spring xi'' = -xi - 2 mu xi' (eq. eq-motion-psi-xi), vectorised over t.
 
-    Modes e^(lam+- t), lam+- = -mu +- sqrt(mu^2 - 1) in complex arithmetic (no growing factor at mu > 1)."""
+    Modes e^(lam+- t), lam+- = -mu +- sqrt(mu^2 - 1) in complex arithmetic (no growing factor at mu > 1); the
+    critical mu = 1 (one double mode) is not covered."""
+    if abs(mu - 1.0) < 1e-6:
+        raise ValueError("flight_spring: mu = 1 (critical damping) has a double mode, not covered")
     root = np.sqrt(complex(mu * mu - 1.0))
     lp, lm = -mu + root, -mu - root
     ep, em = np.exp(lp * np.asarray(t, dtype=float)), np.exp(lm * np.asarray(t, dtype=float))
