@@ -96,6 +96,7 @@ OVERRIDES = {
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
                       "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
     "nonlinear-records": {"linear_events": 40},
+    "proof-relations": {"derivative_impacts": 2, "plot_points": 100},
 }
 
 
@@ -195,7 +196,8 @@ def inputs_for(name: str) -> list:
                 "nonlinear-atlas": [sweep("alpha-atlas")], "gas-collapse": [sweep("rigid-gas-collapse"), sweep("dimer-gas-collapse"),
                                                                    sweep("ring-cooling")],
                 "gas-column": [sweep("column-drop")],
-                "rigid-model-suffices": [sweep("rigid-suffices")]}.get(name, [])
+                "rigid-model-suffices": [sweep("rigid-suffices")],
+                "proof-relations": [s["ud"], s["od"]]}.get(name, [])
     return declared + list(experiments(name))
 
 
