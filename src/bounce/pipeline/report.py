@@ -27,7 +27,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..checks.base import BEYOND, ERRATUM, KINDS, PAPER, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
+from ..checks.base import BEYOND, ERRATUM, IDENTITY, KINDS, PAPER, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, Verdict, read_verdicts
 from ..checks._errata_register import REGISTER, SEVERITIES, entries_by_row, row_id
 
 ORDER = {NOT_REPRODUCED: 0, NOT_CHECKABLE: 1, REPRODUCED: 2}
@@ -183,6 +183,8 @@ def kind_table_lines(reports, register=REGISTER) -> list[str]:
              "overall verdict of its rows (not reproduced if any row is); errata count distinct errors of the text.", "",
              "| kind of claim | reproduced | not reproduced | not checkable | rows |", "|---|---|---|---|---|"]
     for k, a, b, c, n in kind_counts(reports, register):
+        if k == IDENTITY:  # consistency only: they hold or fail, and are never counted as reproduced
+            a, b, c = f"({a} hold)", (f"**{b} fail**" if b else "0"), f"({c})"
         lines.append(f"| {_kind_title(k, n_rows)} | {a} | {b} | {c} | {n} |")
     sev = severity_counts(reports, register)
     total = sev[-1]
