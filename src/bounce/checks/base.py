@@ -294,6 +294,14 @@ def with_variable(ds: xr.Dataset, name: str, values) -> xr.Dataset:
     return ds
 
 
+def rise_once(ds: xr.Dataset, name: str = "energy_excess", at: int = 500, by: float = 1e-12) -> xr.Dataset:
+    """``ds`` with record ``at`` of ``name`` raised ``by`` (relative) above its predecessor: a quantity that must never
+    rise, rising once (the falsifier of the monotonicity claims, e.g. E - E_m)."""
+    v = ds[name].values.copy()
+    v[at] = v[at - 1] * (1.0 + by)
+    return with_variable(ds, name, v)
+
+
 def _label(v: Verdict) -> str:
     return v.claim_id[v.claim_id.index("[") + 1:-1] if "[" in v.claim_id else ""
 
