@@ -90,9 +90,9 @@ rule report:
         # every other figure, linked with the paper's figure it reproduces (bounce.pipeline.catalogue.pipeline_figures)
         figures=[f["path"] for f in PIPELINE_FIGURES],
     output:
-        md="results/report/validation.md",
-        article=report(directory("results/report/article"), htmlindex="index.html", caption="../report/validation.rst",
-                       category="Validation report"),
+        md=report("results/report/validation.md", caption="../report/validation.rst", category="Validation report"),
+        # the article: a folder, which Snakemake's one-file HTML report cannot hold (it is linked from validation.rst)
+        article=directory("results/report/article"),
     params:
         # the subjects' declared order as a list (as_json sorts keys), the sections in the paper's order, the figures
         # with their captions, and the choices the paper leaves open with the config values that make them
