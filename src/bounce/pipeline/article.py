@@ -29,10 +29,10 @@ from collections import defaultdict
 from dataclasses import replace
 from pathlib import Path
 
-from ..checks.base import BEYOND, ERRATUM, IDENTITY, NOT_CHECKABLE, NOT_REPRODUCED, PAPER, REPRODUCED, SELF_TEST
+from ..checks.base import BEYOND, ERRATUM, IDENTITY, NOT_CHECKABLE, NOT_REPRODUCED, REPRODUCED, SELF_TEST
 from ..checks._errata_register import SEVERITIES
 from .report import (KIND_TITLES, ReportError, check_errata, check_subjects, erratum_entries, kind_table_lines, load,
-                     overall, rows, statement_id, statements)
+                     judging_kind, overall, rows, statement_id, statements)
 
 BADGE = {REPRODUCED: "✅ reproduced", NOT_REPRODUCED: "❌ **not reproduced**", NOT_CHECKABLE: "➖ *not checkable*"}
 
@@ -109,7 +109,7 @@ def section_page(title: str, sids: list, subjects: dict, reports, figures: list,
             by_subject[v.subject].append((r, v))
     for sid in sids:
         mine = by_subject.get(sid, [])
-        kind = BEYOND if sid.startswith("beyond:") else PAPER
+        kind = judging_kind(sid)
         stated = [v for _, v in mine if v.kind == kind]
         lines += [f"({subject_anchor(sid)})=", f"## {_md(subjects[sid])}", "",
                   f"Verdict of the subject, from its {'claims beyond the paper' if kind == BEYOND else 'statements of the paper'}: "
@@ -166,7 +166,7 @@ def extension_page(reports, figures: list, here: Path) -> str:
              "the solver's self-tests, the identities (statements no input could falsify, never counted as "
              "reproduced), then the figures of the methods study and of the parameter sweeps.", ""]
     for kind in (BEYOND, SELF_TEST, IDENTITY):
-        mine = statements(v for v in rows(reports) if v.kind == kind and not (kind == BEYOND and v.subject.startswith("beyond:")))
+        mine = statements(v for v in rows(reports) if v.kind == kind and judging_kind(v.subject) != kind)
         lines += [f"## {KIND_TITLES[kind].capitalize()} ({len(mine)})", ""]
         for stid, rs in mine.items():
             lines += _statement_block(stid, rs, info)
@@ -196,8 +196,7 @@ def index_page(reports, meta: dict, choices: list, page_names: list, beyond_page
               "our readings beyond it, self-tests, identities and errata never set it.", "",
               "| subject | verdict | statements |", "|---|---|---|"]
     for sid, title, page in subject_pages:
-        kind = BEYOND if sid.startswith("beyond:") else PAPER
-        stated = [v for v in rows(reports) if v.subject == sid and v.kind == kind]
+        stated = [v for v in rows(reports) if v.subject == sid and v.kind == judging_kind(sid)]
         verdict = overall(stated) if stated else "no statement checked"
         lines.append(f"| [{_cell(_md(title))}]({page}.md#{subject_anchor(sid)}) | {_cell(verdict)} | "
                      f"{len(statements(stated))} |")
@@ -255,13 +254,12 @@ def write(check_files, figure_files, out_dir, subjects: dict, sections: dict, ch
     names, beyond, subject_pages, page_of = [], [], [], {}
     for i, (sec_id, sec) in enumerate(sections.items(), 1):
         name = f"section-{i:02d}"
-        (beyond if all(s.startswith("beyond:") for s in sec["subjects"]) else names).append(name)
+        (beyond if all(judging_kind(s) == BEYOND for s in sec["subjects"]) else names).append(name)
         subject_pages += [(sid, subjects[sid], name) for sid in sec["subjects"]]
         (src / f"{name}.md").write_text(section_page(sec["title"], sec["subjects"], subjects, reports, figs, info, src))
     for v in rows(reports):
-        kind = BEYOND if v.subject.startswith("beyond:") else PAPER
         where = "errata" if v.kind == ERRATUM else next(p for s, _, p in subject_pages if s == v.subject) \
-            if v.kind == kind else "extension"
+            if v.kind == judging_kind(v.subject) else "extension"
         page_of.setdefault(statement_id(v.claim_id), where)
     (src / "errata.md").write_text(errata_page(reports))
     (src / "extension.md").write_text(extension_page(reports, figs, src))

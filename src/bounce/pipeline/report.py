@@ -196,6 +196,12 @@ def kind_table_lines(reports, register=REGISTER) -> list[str]:
     return lines
 
 
+def judging_kind(subject: str) -> str:
+    """The kind of claim that sets a subject's verdict: ``beyond`` for a subject beyond the paper (id ``beyond:...``),
+    else ``paper`` (the paper's statements; our readings, self-tests, identities and errata never set it)."""
+    return BEYOND if subject.startswith("beyond:") else PAPER
+
+
 def summaries(reports, subjects: dict) -> list[tuple[str, str, int]]:
     """(subject title, overall verdict, rows) for each declared subject, from the rows that declare it.
 
@@ -206,8 +212,7 @@ def summaries(reports, subjects: dict) -> list[tuple[str, str, int]]:
     """
     out = []
     for sid, title in subjects.items():
-        kind = BEYOND if sid.startswith("beyond:") else PAPER
-        mine = [v for v in rows(reports) if v.subject == sid and v.kind == kind]
+        mine = [v for v in rows(reports) if v.subject == sid and v.kind == judging_kind(sid)]
         out.append((title, overall(mine), len(mine)))
     return out
 
