@@ -281,6 +281,16 @@ def on_named(name: str, fn: Callable) -> Callable:
     return doctor
 
 
+def on_input(i: int, fn: Callable) -> Callable:
+    """A falsifier's ``doctor``: ``fn(ds) -> ds`` applied to a deep copy of input ``i`` (in the order ``measure`` gets
+    them), for a group whose scenes play different parts."""
+    def doctor(inputs, spec):
+        inputs = list(inputs)
+        inputs[i] = fn(inputs[i].copy(deep=True))
+        return inputs, spec
+    return doctor
+
+
 def on_spec(fn: Callable) -> Callable:
     """A falsifier's ``doctor``: ``fn(spec) -> spec`` on a deep copy of the group's config slice."""
     def doctor(inputs, spec):

@@ -19,7 +19,10 @@ import xarray as xr
 from ..figures.common import WIDTH, plt, save
 from ..io import sample_dataset
 from ..analysis.theory import T_xi
-from .base import PAPER, Check, Falsifier, Verdict, claim, judge, with_variable
+from .base import PAPER, Check, Falsifier, Verdict, claim, judge, on_input, with_variable
+
+#: the inputs the falsifiers doctor by position (on_input): 0 the fall of fig. rigid-fall, 1 the contacts of
+#: fig. very_rigid_poincare
 
 
 def _var(value, long_name):
@@ -73,16 +76,6 @@ def measure(spec: dict, inputs: list[xr.Dataset]) -> SimpleNamespace:
 CLAIMS: list = []
 
 
-def _on_input(i: int, fn):
-    """A falsifier's doctor: ``fn(ds) -> ds`` on a deep copy of input ``i`` (0: the fall of fig. rigid-fall, 1: the
-    contacts of fig. very_rigid_poincare)."""
-    def doctor(inputs, spec):
-        inputs = list(inputs)
-        inputs[i] = fn(inputs[i].copy(deep=True))
-        return inputs, spec
-    return doctor
-
-
 def _first_flight_missing(ds):
     """The fall restarted at the landing that ends its first macroscopic flight (flights longer than 2 T_xi): the
     state after that event becomes the initial one, the later records are kept with t from it."""
@@ -109,7 +102,7 @@ def _spiral_outwards(ds):
 
 @claim(CLAIMS, "height-drop", PAPER, "fig:rigid-fall",
        falsifier=Falsifier("the fall's record missing its first macroscopic flight (flights counted from the second)",
-                           _on_input(0, _first_flight_missing)))
+                           on_input(0, _first_flight_missing)))
 def height_drop(m, spec) -> Verdict:
     lo, hi = spec["drop_between"]
     k = m.k
@@ -125,7 +118,7 @@ def height_drop(m, spec) -> Verdict:
 
 @claim(CLAIMS, "zigzag", PAPER, "fig:very_rigid_poincare",
        falsifier=Falsifier("contacts with the upper mass always falling (ydot -> -|ydot|)",
-                           _on_input(1, _upper_mass_falling)))
+                           on_input(1, _upper_mass_falling)))
 def zigzag(m, spec) -> Verdict:
     return Verdict("early contacts are double impacts: ydot alternates in sign (zig-zag)",
                    "fig. very_rigid_poincare, section 8.1",
@@ -135,7 +128,7 @@ def zigzag(m, spec) -> Verdict:
 
 
 @claim(CLAIMS, "spiral", PAPER, "fig:very_rigid_poincare",
-       falsifier=Falsifier("the contacts' y - y_eq in reverse order (a spiral outwards)", _on_input(1, _spiral_outwards)))
+       falsifier=Falsifier("the contacts' y - y_eq in reverse order (a spiral outwards)", on_input(1, _spiral_outwards)))
 def spiral(m, spec) -> Verdict:
     a, b = spec["spiral_contacts"]
     return Verdict("late contacts spiral towards (0,0,0): damped oscillation of Y_n - y_eq",
