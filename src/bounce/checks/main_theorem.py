@@ -635,22 +635,8 @@ def _dataset(m: Measurements, spec: dict) -> xr.Dataset:
 
 # --------------------------------------------------------------------------- plot
 
-def _envelope(n: np.ndarray, v: np.ndarray, per_decade: int = 5) -> tuple[np.ndarray, np.ndarray]:
-    """The largest |v| in each log-spaced bin of n (``per_decade`` bins a decade), at the bins' geometric centres: the
-    envelope of a sequence that oscillates (the double impacts' zig-zag), drawn as one smooth line."""
-    ok = np.isfinite(v) & (n > 0)
-    n, v = n[ok], np.abs(v[ok])
-    edges = np.geomspace(n.min(), n.max() * (1 + 1e-12), max(2, int(np.log10(n.max() / n.min()) * per_decade) + 1))
-    idx = np.digitize(n, edges) - 1
-    centres, peaks = [], []
-    for k in np.unique(idx):
-        centres.append(np.sqrt(edges[k] * edges[min(k + 1, edges.size - 1)]))
-        peaks.append(v[idx == k].max())
-    return np.array(centres), np.array(peaks)
-
-
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, log_binned, plt, save
 
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
     (a1, a2), (a3, a4) = axes
@@ -663,7 +649,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             a1.loglog(n, np.abs(q - 1), color="k", ls=styles[i % 4], lw=1.2, label=lab, zorder=5)
             for m, qn in enumerate(QUANTITIES[1:]):
                 qq = ds["series_q"].sel(quantity=qn).values[i]
-                a2.loglog(*_envelope(n, qq - 1), color=f"C{m}", ls=styles[i % 4], lw=1.1,
+                # the envelope of the oscillating |q_n - 1|: its largest value per fifth of a decade
+                a2.loglog(*log_binned(n, np.abs(qq - 1), np.max), color=f"C{m}", ls=styles[i % 4], lw=1.1,
                           label=QUANTITY_LABELS[qn] if i == 0 else None)
     if "atlas_mu" in ds.coords:
         mus, gammas = ds["atlas_mu"].values, ds["atlas_gamma"].values

@@ -582,23 +582,15 @@ def overdamped_inelastic(m, spec) -> dict:
         f"r_eff^2 <= {frac:g}: less than {frac:.1%} of the drop height is regained", judge(o["r_eff"] ** 2 <= frac))}
 
 
-def _binned(u: np.ndarray, v: np.ndarray, per_decade: int = 5, least: int = 5) -> tuple:
-    """Median and the 25-75 % and 5-95 % ranges of v in log-spaced bins of u (``per_decade`` a decade; bins with fewer
-    than ``least`` values left out): a cloud of 1e5 bounces as a line with its spread."""
-    ok = np.isfinite(u) & np.isfinite(v) & (u > 0)
-    u, v = u[ok], v[ok]
-    edges = np.geomspace(u.min(), u.max() * (1 + 1e-12), max(2, int(np.log10(u.max() / u.min()) * per_decade) + 1))
-    idx = np.digitize(u, edges) - 1
-    rows = [(np.sqrt(edges[k] * edges[k + 1]), *np.percentile(v[idx == k], (5, 25, 50, 75, 95)))
-            for k in range(edges.size - 1) if np.count_nonzero(idx == k) >= least]
-    return tuple(np.array(c) for c in zip(*rows)) if rows else (np.array([]),) * 6
+def _spread(ax, u, v, color, label):
+    """The median of v against u in log-spaced bins (five a decade, at least 5 bounces each) with its 25-75 % (dark)
+    and 5-95 % (light) ranges: a cloud of 1e5 bounces as a line with its spread."""
+    from ..figures.common import log_binned
 
-
-def _spread(ax, u, v, color, label, log=False):
-    """The binned median of v against u with its 25-75 % (dark) and 5-95 % (light) ranges."""
-    c, p5, p25, p50, p75, p95 = _binned(u, v)
+    c, q = log_binned(u, v, lambda w: np.percentile(w, (5, 25, 50, 75, 95)), least=5)
     if not c.size:
         return
+    p5, p25, p50, p75, p95 = q.T
     ax.fill_between(c, p5, p95, color=color, alpha=0.15, lw=0)
     ax.fill_between(c, p25, p75, color=color, alpha=0.35, lw=0)
     ax.plot(c, p50, "-", color=color, lw=1.2, label=label + " (median, 25-75 %, 5-95 %)")

@@ -7,6 +7,7 @@ import uuid
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -51,6 +52,20 @@ def save(fig, outputs) -> None:
             Path(tmp).unlink(missing_ok=True)
             raise
     plt.close(fig)
+
+
+def log_binned(x: np.ndarray, v: np.ndarray, stat, per_decade: int = 5, least: int = 1):
+    """(centres, stat(v) per bin) over log-spaced bins of x > 0 (``per_decade`` a decade; bins with fewer than ``least``
+    finite values left out), the centres geometric: a long or oscillating sequence drawn as one smooth line."""
+    ok = np.isfinite(x) & np.isfinite(v) & (x > 0)
+    x, v = x[ok], v[ok]
+    if not x.size:
+        return np.array([]), np.array([])
+    edges = np.geomspace(x.min(), x.max() * (1 + 1e-12), max(2, int(np.log10(x.max() / x.min()) * per_decade) + 1))
+    idx = np.digitize(x, edges) - 1
+    bins = [k for k in range(edges.size - 1) if np.count_nonzero(idx == k) >= least]
+    return (np.sqrt(edges[bins] * edges[np.array(bins, dtype=int) + 1]),
+            np.array([stat(v[idx == k]) for k in bins]))
 
 
 def tex_num(x, digits: int = 3) -> str:
