@@ -137,7 +137,7 @@ def section_page(title: str, sids: list, subjects: dict, reports, figures: list,
     return "\n".join(lines) + "\n"
 
 
-def errata_page(reports) -> str:
+def errata_page(reports, info: dict) -> str:
     lines = ["# Errata of the paper", "",
              "Each distinct error of the text once (the register, `src/bounce/checks/_errata_register.py`; lines of the "
              "LaTeX source, sections numbered as LaTeX numbers them), by severity, with the rows that check the printed "
@@ -153,14 +153,12 @@ def errata_page(reports) -> str:
                          if rs else " Recorded from the text (no claim row).")]
         lines.append("")
     lines += ["## The rows that check errata", ""]
-    info = _claims_info()
     for stid, rs in statements(v for v in rows(reports) if v.kind == ERRATUM).items():
         lines += _statement_block(stid, rs, info)
     return "\n".join(lines) + "\n"
 
 
-def extension_page(reports, figures: list, here: Path) -> str:
-    info = _claims_info()
+def extension_page(reports, figures: list, here: Path, info: dict) -> str:
     lines = ["# Beyond the paper", "",
              "Our own readings and consequences of the paper's statements (they never set a paper subject's verdict), "
              "the solver's self-tests, the identities (statements no input could falsify, never counted as "
@@ -261,8 +259,8 @@ def write(check_files, figure_files, out_dir, subjects: dict, sections: dict, ch
         where = "errata" if v.kind == ERRATUM else next(p for s, _, p in subject_pages if s == v.subject) \
             if v.kind == judging_kind(v.subject) else "extension"
         page_of.setdefault(statement_id(v.claim_id), where)
-    (src / "errata.md").write_text(errata_page(reports))
-    (src / "extension.md").write_text(extension_page(reports, figs, src))
+    (src / "errata.md").write_text(errata_page(reports, info))
+    (src / "extension.md").write_text(extension_page(reports, figs, src, info))
     (src / "index.md").write_text(index_page(reports, meta, choices, names, beyond, subject_pages, page_of))
     (src / "conf.py").write_text(CONF.format(title=meta.get("title", "bounce")))
     status = build_main(["-b", "html", "-q", "-E", "-d", str(tmp / "_doctrees"), str(src), str(tmp)])
