@@ -108,7 +108,7 @@ class Falsifier:
 
     * ``doctor(inputs, spec) -> (inputs, spec)``: the group's input datasets (in the order ``measure`` gets them) and
       config slice, perturbed; it copies what it changes, never modifies its arguments;
-    * ``patch() -> {name: replacement}``: names of the claim's own module swapped while the group measures and the
+    * ``patch() -> {name: replacement}``: names of the claim's own module (its group's) swapped while the group measures and the
       claim judges (a printed formula in place of the corrected one, for claims that read no data).
 
     ``labels``: the per-scene rows that must flip (empty: every row the true inputs decide).  A row flips when
@@ -168,7 +168,6 @@ def recorded(registry: list, id: str, kind: str, subject: str, known_failure: st
     def from_measurement(m, spec):
         return m.rows.get(id, {})
     from_measurement.__name__ = id.replace("-", "_")
-    from_measurement.__module__ = sys._getframe(1).f_globals["__name__"]
     registry.append(Claim(id, kind, subject, from_measurement, known_failure, falsifier, why_identity, statement))
 
 
@@ -318,11 +317,11 @@ def _label(v: Verdict) -> str:
 
 def falsify(check: Check, claim_id: str, spec: dict, inputs) -> list[Verdict]:
     """The rows of claim ``claim_id`` of ``check`` judged on its falsifier's doctored inputs (the patches of the
-    claim's module applied only while the group measures and judges)."""
+    group's module applied only while the group measures and judges)."""
     c = next(c for c in check.claims if c.id == claim_id)
     f = c.falsifier
     inputs, spec = f.doctor(list(inputs), spec) if f.doctor else (list(inputs), spec)
-    module = sys.modules[c.judge.__module__]
+    module = sys.modules[check.measure.__module__]  # the group's module: its measure and claims live there
     swaps = f.patch() if f.patch else {}
     saved = {name: getattr(module, name) for name in swaps}
     try:
