@@ -128,9 +128,8 @@ def test_the_article_is_organised_by_the_paper_and_counts_statements(tmp_path, m
     from matplotlib import pyplot as plt
 
     plt.figure(figsize=(2, 1)).savefig(tmp_path / "checks" / "fig-g.png")
-    sections = {"second": {"title": "Second", "subjects": ["lem:a"], "order": 1},
-                "first": {"title": "First", "subjects": ["thm:b"], "order": 0}}
-    choices = [{"text": "a choice", "values": {"checks.g.x": 20}}]
+    sections = [{"title": "First", "subjects": ["thm:b"]}, {"title": "Second", "subjects": ["lem:a"]}]
+    choices = [{"text": "a choice", "values": [["checks.g.x", 20]]}]
     out = tmp_path / "article"
     article.write(["checks/g.nc"], ["checks/fig-g.png"], out, {"lem:a": "A", "thm:b": "B"}, sections, choices,
                   {"title": "T", "version": "v", "commit": "c"})

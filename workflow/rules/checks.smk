@@ -94,10 +94,10 @@ rule report:
         # the article: a folder, which Snakemake's one-file HTML report cannot hold (it is linked from validation.rst)
         article=directory("results/report/article"),
     params:
-        # the subjects' declared order as a list (as_json sorts keys), the sections in the paper's order, the figures
+        # the subjects' declared order as a list (as_json sorts keys), the sections as a list in the paper's order, the figures
         # with their captions, and the choices the paper leaves open with the config values that make them
         spec=as_json(dict(config["report"], subject_order=list(config["report"]["subjects"]),
-                          sections={k: dict(v, order=i) for i, (k, v) in enumerate(config["report"]["sections"].items())},
+                          sections=list(config["report"]["sections"].values()),
                           choices=report_choices(config), figures=PIPELINE_FIGURES, figureless=FIGURELESS)),
     resources:
         mem_mb=1000,

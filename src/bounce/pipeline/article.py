@@ -206,7 +206,7 @@ def index_page(reports, meta: dict, choices: list, page_names: list, beyond_page
     lines += [f"- [`{sid}`]({page_of[sid]}.md#{anchor(sid)}): {_md(rs[0].claim)}" for sid, rs in failing.items()]
     lines += ["", "## Choices the paper leaves open", "",
               "What the paper does not state and this replication had to choose (each set in `config/config.yaml`):", ""]
-    lines += [f"- {_md(c['text'])} (" + ", ".join(f"`{k}` = {v}" for k, v in c["values"].items()) + ")"
+    lines += [f"- {_md(c['text'])} (" + ", ".join(f"`{k}` = {v}" for k, v in c["values"]) + ")"
               for c in choices]
     lines += ["", "## Contents", "", "Part I, the replication, follows the paper's sections; part II lists the errata; "
               "part III what goes beyond the paper.", "",
@@ -230,7 +230,7 @@ html_show_sourcelink = False
 '''
 
 
-def write(check_files, figure_files, out_dir, subjects: dict, sections: dict, choices: list, meta: dict,
+def write(check_files, figure_files, out_dir, subjects: dict, sections: list, choices: list, meta: dict,
           figures=()) -> None:
     """Generate the MyST sources in ``out_dir/_sources_md`` and build the HTML article into ``out_dir``
     (replaced whole, through a temporary folder beside it)."""
@@ -244,13 +244,12 @@ def write(check_files, figure_files, out_dir, subjects: dict, sections: dict, ch
     reports = load(check_files, figure_files, src)
     check_subjects(reports, subjects)
     check_errata(reports)
-    sections = dict(sorted(sections.items(), key=lambda kv: kv[1].get("order", 0)))  # as_json sorted the keys
     # the figures are referenced from the sources' folder; paths as given are relative to the working directory
     figs = [dict(f, path=os.path.abspath(f["path"])) for f in figures]
     reports = [replace(r, figure=os.path.abspath(os.path.join(src, r.figure)) if r.figure else "") for r in reports]
     info = _claims_info()
     names, beyond, subject_pages, page_of = [], [], [], {}
-    for i, (sec_id, sec) in enumerate(sections.items(), 1):
+    for i, sec in enumerate(sections, 1):
         name = f"section-{i:02d}"
         (beyond if all(judging_kind(s) == BEYOND for s in sec["subjects"]) else names).append(name)
         subject_pages += [(sid, subjects[sid], name) for sid in sec["subjects"]]

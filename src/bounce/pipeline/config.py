@@ -205,18 +205,19 @@ def _check_report(config: dict) -> None:
 
 
 def report_choices(config: dict) -> list[dict]:
-    """config ``report.choices``, each with the values of the keys it names (dotted paths into the whole config,
-    defaults filled), for the article's front matter."""
+    """config ``report.choices``, each with ``values``: [key, value] pairs of the keys it names, in their order (dotted
+    paths into the whole config, defaults filled; pairs, not a mapping, so that the rule's JSON keeps the order), for
+    the article's front matter."""
     out = []
     for i, c in enumerate(config.get("report", {}).get("choices", [])):
-        values = {}
+        values = []
         for key in c["keys"]:
             node = config
             for part in key.split("."):
                 if not isinstance(node, dict) or part not in node:
                     raise ConfigError(f"report.choices[{i}].keys: {key!r} is not a key of the config")
                 node = node[part]
-            values[key] = node
+            values.append([key, node])
         out.append({"text": c["text"], "values": values})
     return out
 
