@@ -94,7 +94,8 @@ OVERRIDES = {
     "gas-column": {},
     "rigid-model-suffices": {},
     "paper-figures": {"drop_between": [4, 6], "samples_per_flight": 400, "macroscopic_factor": 2.0,
-                      "zigzag_contacts": 60, "spiral_contacts": [400, 20000]},
+                      "zigzag_contacts": 60, "spiral_contacts": [400, 20000],
+                      "disorder_window": 40, "disorder_unexplained_min": 0.5, "pattern_unexplained_max": 0.1},
     "nonlinear-records": {"linear_events": 40},
     "proof-relations": {"derivative_impacts": 2, "plot_points": 100},
 }

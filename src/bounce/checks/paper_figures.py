@@ -5,6 +5,15 @@
   macroscopic flights are those longer than T_xi = pi / sqrt(1 - mu^2) (same section).
 * fig. very_rigid_poincare: early contacts are double impacts, "whose signature is
   the alternation of negative and positive values of ydot" (zig-zag).
+* fig. very_rigid_poincare: "at later times the sequence of states becomes very disordered, and
+  lacks any easily recognizable pattern, except a tendency to move towards the equilibrium
+  point" (section 8.1).  Measured on the states s_n = (Y_n - y_eq, Ydot_n) just after contact n:
+  the phase begins where the zig-zag breaks (Ydot_n, Ydot_{n+1} of one sign) and a pattern is a
+  linear return map s_{n+1} = A s_n (the zig-zag and the late spiral are each one, to within a few
+  per cent: eq. mappa is linear); the fraction of sum |s_{n+1}|^2 that the best such map leaves
+  unexplained over windows of contacts measures the disorder.  Those contacts lie past the float64
+  predictability horizon (the methods study ``horizon``: ~120 contacts for this scene), so the
+  individual states are not the true trajectory's: what is judged is a property of the sequence.
 * fig. very_rigid_poincare_magni: late contacts spiral in towards (0, 0, 0): y - y_eq
   and ydot oscillate with a decaying amplitude.
 """
@@ -19,7 +28,7 @@ import xarray as xr
 from ..figures.common import WIDTH, plt, save
 from ..io import sample_dataset
 from ..analysis.theory import T_xi
-from .base import PAPER, Check, Falsifier, Verdict, claim, judge, on_input, with_variable
+from .base import NOT_CHECKABLE, PAPER, Check, Falsifier, Verdict, claim, judge, on_input, with_variable
 
 #: the inputs the falsifiers doctor by position (on_input): 0 the fall of fig. rigid-fall, 1 the contacts of
 #: fig. very_rigid_poincare
@@ -47,6 +56,43 @@ def apex_heights(ds, samples_per_flight: int, factor: float) -> tuple[np.ndarray
     return np.array(starts), np.array(peaks)
 
 
+def contact_states(ds) -> np.ndarray:
+    """s_n = (Y_n - y_eq, Ydot_n) just after every contact, shape (n, 2)."""
+    return np.stack([ds["y_minus_yeq"].values, ds["ydot"].values], axis=1)
+
+
+def unexplained(states: np.ndarray) -> float:
+    """Fraction of sum |s_{n+1}|^2 that the least-squares linear map s_{n+1} = A s_n (fixed point: the equilibrium)
+    leaves unexplained over these consecutive states: ~0 for the zig-zag and the spiral, ~1 without pattern."""
+    before, after = states[:-1], states[1:]
+    a = np.linalg.lstsq(before, after, rcond=None)[0]
+    return float(np.sum((after - before @ a) ** 2) / np.sum(after ** 2))
+
+
+def disordered_phase(ds, window: int, pattern_max: float) -> SimpleNamespace:
+    """The phase after the zig-zag: its first record index (where Ydot_n, Ydot_{n+1} first share a sign), the
+    unexplained fraction of consecutive windows of ``window`` contacts from there until one is below ``pattern_max``
+    (a linear map explains the sequence again: the spiral), its last record index (the end of the last disordered
+    window, or the run's), the same fraction over the zig-zag's last window and the rms distance |s_n| from the
+    equilibrium over the phase's two halves."""
+    states = contact_states(ds)
+    ydot = states[:, 1]
+    same_sign = np.nonzero(np.sign(ydot[1:]) == np.sign(ydot[:-1]))[0]
+    start = int(same_sign[0]) if same_sign.size else ydot.size
+    fractions, end = [], ydot.size
+    for lo in range(start, ydot.size - window + 1, window):
+        fractions.append(unexplained(states[lo: lo + window]))
+        if fractions[-1] < pattern_max:
+            end = lo
+            break
+    before = unexplained(states[start - window: start + 1]) if start >= window else float("nan")
+    phase = np.hypot(states[start:end, 0], states[start:end, 1])
+    half = phase.size // 2
+    rms = [float(np.sqrt(np.mean(part ** 2))) if part.size else float("nan") for part in (phase[:half], phase[half:])]
+    return SimpleNamespace(start=start, end=end, fractions=np.array(fractions), zigzag=before, rms_first=rms[0],
+                           rms_second=rms[1])
+
+
 def measure(spec: dict, inputs: list[xr.Dataset]) -> SimpleNamespace:
     """Apex heights of the macroscopic flights of fig. rigid-fall; Ydot_n and Y_n - y_eq of the contacts."""
     fall, contacts = inputs
@@ -61,16 +107,23 @@ def measure(spec: dict, inputs: list[xr.Dataset]) -> SimpleNamespace:
     sign_changes = int(np.count_nonzero(np.diff(np.sign(ydev)) != 0))
     third = max(ydev.size // 3, 1)
     amp_first, amp_last = float(np.max(np.abs(ydev[:third]))), float(np.max(np.abs(ydev[-third:])))
+    disorder = disordered_phase(contacts, int(spec["disorder_window"]), float(spec["pattern_unexplained_max"]))
+    disorder.spiral = unexplained(contact_states(contacts)[a:b])
     data = xr.Dataset({
         "apex_time": ("flight", starts, {"long_name": "start of the macroscopic flight", "units": "1"}),
         "apex_height": ("flight", peaks, {"long_name": "maximum height of the upper mass in the flight", "units": "1"}),
         "largest_drop_flight": _var(k, "macroscopic flight after which the largest height drop occurs"),
         "zigzag_fraction": _var(alternation, "fraction of sign alternations of Ydot_n, early contacts"),
         "spiral_sign_changes": _var(sign_changes, "sign changes of Y_n - y_eq, late contacts"),
+        "disorder_start": _var(disorder.start + 1, "first contact of the disordered phase (the zig-zag breaks)"),
+        "disorder_unexplained": ("window", disorder.fractions,
+                                 {"long_name": "fraction of |s_{n+1}|^2 no linear return map explains, windows of "
+                                               "contacts from the disordered phase's start", "units": "1"}),
     })
     data.attrs.update(gamma=float(fall.attrs["gamma"]), mu=float(fall.attrs["mu"]))
     return SimpleNamespace(peaks=peaks, ratios=ratios, k=k, alternation=alternation, sign_changes=sign_changes,
-                           amp_first=amp_first, amp_last=amp_last, data=data)
+                           amp_first=amp_first, amp_last=amp_last, disorder=disorder,
+                           n_contacts=contacts.sizes["event"], data=data)
 
 
 CLAIMS: list = []
@@ -98,6 +151,25 @@ def _upper_mass_falling(ds):
 def _spiral_outwards(ds):
     """The contacts' y - y_eq in reverse order: an oscillation growing instead of decaying."""
     return with_variable(ds, "y_minus_yeq", ds["y_minus_yeq"].values[::-1])
+
+
+def _straight_to_the_spiral(inputs, spec):
+    """The contacts from the zig-zag's break on replaced by the late spiral's own linear map (fitted on the contacts
+    ``spiral_contacts``, eq. mappa's regime) iterated from the state there: the zig-zag turning straight into the
+    spiral."""
+    a, b = spec["spiral_contacts"]
+    return on_input(1, lambda ds: _iterate_spiral_map(ds, a, b))(inputs, spec)
+
+
+def _iterate_spiral_map(ds, first: int, last: int):
+    states = contact_states(ds)
+    ydot = states[:, 1]
+    start = int(np.nonzero(np.sign(ydot[1:]) == np.sign(ydot[:-1]))[0][0])
+    late = states[first:last]
+    a = np.linalg.lstsq(late[:-1], late[1:], rcond=None)[0]
+    for n in range(start + 1, states.shape[0]):
+        states[n] = states[n - 1] @ a
+    return with_variable(with_variable(ds, "y_minus_yeq", states[:, 0]), "ydot", states[:, 1])
 
 
 @claim(CLAIMS, "height-drop", PAPER, "fig:rigid-fall",
@@ -138,6 +210,35 @@ def spiral(m, spec) -> Verdict:
                    f"{m.sign_changes} sign changes; amplitude {m.amp_first:.2e} -> {m.amp_last:.2e}",
                    "qualitative claim: any oscillation (>= 4 sign changes) with decaying envelope",
                    judge(m.sign_changes >= 4 and m.amp_last < m.amp_first))
+
+
+@claim(CLAIMS, "disordered-phase", PAPER, "fig:very_rigid_poincare",
+       falsifier=Falsifier("the zig-zag turning straight into the late spiral (its linear map iterated from the "
+                           "zig-zag's break on)", _straight_to_the_spiral))
+def disordered_phase_claim(m, spec) -> Verdict:
+    d, window = m.disorder, int(spec["disorder_window"])
+    lo, hi = float(spec["disorder_unexplained_min"]), float(spec["pattern_unexplained_max"])
+    if not d.fractions.size:
+        return Verdict("after the zig-zag the states become very disordered, with a tendency towards equilibrium",
+                       "fig. very_rigid_poincare, section 8.1", "the contacts after the zig-zag", "a disordered phase",
+                       f"the zig-zag lasts the whole run ({d.start} contacts)", "-", NOT_CHECKABLE)
+    ends = (f"a linear map explains contacts {d.end + 1}-{d.end + window} again (the spiral)" if d.end < m.n_contacts
+            else "the phase lasts to the end of the run")
+    return Verdict("after the zig-zag the states become very disordered, lacking any easily recognizable pattern, "
+                   "except a tendency to move towards the equilibrium point",
+                   "fig. very_rigid_poincare, section 8.1",
+                   f"from the contact where the zig-zag breaks, windows of {window} contacts: the fraction of "
+                   "|s_{n+1}|^2, s_n = (Y_n - y_eq, Ydot_n), the best linear return map leaves unexplained, until one "
+                   f"leaves < {hi} (compared with the zig-zag's last window and the spiral's contacts); rms |s_n| over "
+                   "the phase's two halves",
+                   f">= {lo} unexplained in the first window (no map explains half the sequence) and the rms distance "
+                   "falling from the first half to the second",
+                   f"zig-zag breaks at contact {d.start + 1}; unexplained " + ", ".join(f"{f:.2f}" for f in d.fractions)
+                   + f" in windows from contact {d.start + 1} (zig-zag's last {d.zigzag:.3f}, spiral {d.spiral:.3f}); "
+                   f"{ends}; rms |s_n| {d.rms_first:.2e} -> {d.rms_second:.2e}",
+                   f"{lo}: a sequence with a pattern (a linear map) leaves ~0, one without any leaves ~1; "
+                   "the contacts are past the float64 horizon: a property of the sequence is judged, not its states",
+                   judge(d.fractions[0] >= lo and d.rms_second < d.rms_first))
 
 
 def plot(ds, spec, outputs) -> None:
