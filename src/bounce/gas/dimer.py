@@ -77,6 +77,24 @@ a floor event two: O(log n) per event.  A slot keeps what its search ended at: t
 grains still at the prediction's origin are advanced (others by the difference of the double-double
 times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
 the impact rule uses as the single ball's loop does (always, for one grain).
+
+Lazy predictions.  A pair approaching with a search window that starts at start > 0 (the gap is
+proved positive before it, above) is not searched when it is predicted: its slot keeps the search's
+inputs (the gap's state at the origin, its rounding, the window and whether a horizon proves no
+contact) and is queued *pending* at a key strictly before origin + start (:func:`_lazy_key`: the
+float sum lowered by 4 eps of itself, more than the rounding of the double-double keys).  The search
+never returns a time before its start, so this key precedes the slot's true key.  Invariant: every
+key in the heap is the slot's true next-contact key or, for a pending slot, a key before it.  When a
+pending slot reaches the top of the heap its deferred search runs (the very search, with the very
+inputs, an eager prediction would have run at the origin: a pure function of them, so the same bits)
+and the slot is requeued at its true key before anything fires; an event fires only from the top,
+so only when its true key precedes every other slot's key and hence every other true key, in the
+order of :func:`bounce.gas.queue.before`: the events, their order and their records are those of the
+eager engine, and no contact is skipped (the contract above holds per search).  Most pending slots
+are re-predicted (a neighbour's event changes a grain) before their start comes, and their search is
+never run (the ring of benchmarks/bench_gas.py: a third of the root finder's evaluations).  A result
+before the pending key (excluded by the argument above) stops the run as ``root_finder_failed``
+rather than fire out of order; a failed search is found when its slot reaches the top.
 """
 
 from __future__ import annotations
@@ -104,10 +122,13 @@ GRAIN_FIELDS = 6
 # columns of the slot array: the prediction's origin (double-double), its duration, what the search
 # ended at (gap velocity, rounding scale, spring state (eta or s, s') at the contact), and its type
 S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
-SLOT_FIELDS = 8
+# and, for a pending (deferred) search, its inputs: the gap's state at the origin, the classification
+# window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit proves none
+S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(8, 17)
+SLOT_FIELDS = 17
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
-# stops there)
-T_CONTACT, T_STICKY, T_FAILED = 0.0, 1.0, 2.0
+# stops there); a search not run yet, queued at a lower bound of its contact time (module docstring)
+T_CONTACT, T_STICKY, T_FAILED, T_PENDING = 0.0, 1.0, 2.0, 3.0
 
 #: the internal energy bound: xi^2 + xi'^2 < 1/4 keeps 1 + 2 xi > 0 until the grain's next event
 AMPLITUDE2_MAX = 0.25
@@ -203,21 +224,70 @@ def _pair_limits(x0, u, a, eta, room):
 
 
 @njit(cache=True)
+def _lazy_key(t_hi, t_start):
+    """A key strictly before every key add_time(t_hi, t_lo, tau) with tau >= t_start > 0 (t_hi >= 0, |t_lo| <=
+    ulp(t_hi)/2): fl(t_hi + t_start) lowered by 4 eps of itself, more than the rounding of both sums."""
+    k = t_hi + t_start
+    return k - 4.0 * EPS * k
+
+
+@njit(cache=True)
 def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work):
-    """Search slot s's next contact from (t_hi, t_lo) and queue it (module docstring)."""
+    """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair whose contact
+    cannot come before a start > 0 of its window is queued pending at that start (its search deferred,
+    :func:`_resolve_pending`); any other search is run now."""
     room = t_max - t_hi - t_lo
     if G == 0.0:
         t_start, t_limit, proves = _pair_limits(x0, u, a, eta, room)
         if t_limit == 0.0 and proves:
+            sl[s, S_TYPE] = T_CONTACT
             update(s, math.inf, 0.0, heap, pos, khi, klo)
+            return
+        if t_start > 0.0:
+            sl[s, S_T0H] = t_hi
+            sl[s, S_T0L] = t_lo
+            sl[s, S_X0] = x0
+            sl[s, S_U] = u
+            sl[s, S_A] = a
+            sl[s, S_S0] = eta
+            sl[s, S_WINDOW] = window
+            sl[s, S_SCALE0] = scale0
+            sl[s, S_START] = t_start
+            sl[s, S_LIMIT] = t_limit
+            sl[s, S_PROVES] = 1.0 if proves else 0.0
+            sl[s, S_TYPE] = T_PENDING
+            update(s, _lazy_key(t_hi, t_start), 0.0, heap, pos, khi, klo)
             return
     else:
         t_start, t_limit, proves = 0.0, room, False
+    _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, heap, pos, khi,
+                klo, params, coefs, work)
+
+
+@njit(cache=True)
+def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+    """Run pending slot s's deferred search (from its stored inputs: the search an eager prediction would have
+    run, bit for bit) and queue its result.  Returns False if the result precedes the lower bound it was
+    queued at (never expected: the bound is proved; the caller stops the run)."""
+    lazy_hi, lazy_lo = khi[s], klo[s]
+    _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW], sl[s, S_SCALE0],
+                sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H], sl[s, S_T0L], t_max, sl, heap,
+                pos, khi, klo, params, coefs, work)
+    if sl[s, S_TYPE] != T_CONTACT:
+        return True  # a failed search (or a sticky start): the run stops at the slot's origin
+    return khi[s] > lazy_hi or (khi[s] == lazy_hi and klo[s] >= lazy_lo)
+
+
+@njit(cache=True, inline="always")
+def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, heap, pos, khi,
+                klo, params, coefs, work):
+    """Search slot s's next contact in (t_start, t_limit] from (t_hi, t_lo) and queue it."""
     status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs,
                                                   work)
     if status == -1 and G == 0.0 and eta * eta + a * a <= rounding_level(scale0) ** 2:
         # a pair in touch at relative rest with its springs' sum s at rest to rounding: relaxed (module docstring),
         # the gap stays 0 until an event changes a grain; no contact predicted (it was queued as a sticky onset)
+        sl[s, S_TYPE] = T_CONTACT
         update(s, math.inf, 0.0, heap, pos, khi, klo)
         return
     kind = T_CONTACT
@@ -236,7 +306,9 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
         sl[s, S_TYPE] = kind
         k_hi, k_lo = add_time(t_hi, t_lo, tau)
         update(s, k_hi, k_lo, heap, pos, khi, klo)
-    elif status == NEVER or (status == HORIZON and proves):
+        return
+    sl[s, S_TYPE] = T_CONTACT
+    if status == NEVER or (status == HORIZON and proves):
         update(s, math.inf, 0.0, heap, pos, khi, klo)
     else:  # HORIZON at t_max: after every event of the run, never fired
         update(s, t_max, math.inf, heap, pos, khi, klo)
@@ -335,6 +407,13 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
     ctl[C_STOP] = STOP_EVENTS
     while rec < max_events:
         s = heap[0]
+        if sl[s, S_TYPE] == T_PENDING:
+            # a deferred search reached the top: run it, requeue, look again (no event fires before it)
+            if not _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+                ctl[C_STOP] = STOP_FAILED
+                ctl[C_WHERE] = s
+                break
+            continue
         t_hi = khi[s]
         t_lo = klo[s]
         if t_hi == math.inf:
