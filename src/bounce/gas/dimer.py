@@ -95,6 +95,12 @@ are re-predicted (a neighbour's event changes a grain) before their start comes,
 never run (the ring of benchmarks/bench_gas.py: a third of the root finder's evaluations).  A result
 before the pending key (excluded by the argument above) stops the run as ``root_finder_failed``
 rather than fire out of order; a failed search is found when its slot reaches the top.
+
+Call boundaries.  A numba call that passes arrays costs about as much as a short evaluation, so the
+per-event helpers here (advance, search window, search, queueing) are inlined into their few callers
+(``inline="always"``: the same operations in the same order, the same bits); the single ball's root
+finder is not (its copies would double the cold compile for ~2 %), and
+:func:`bounce.exact.oscillator.fundamental` is inlined into :func:`bounce.exact.flight.gap`.
 """
 
 from __future__ import annotations
@@ -134,7 +140,7 @@ T_CONTACT, T_STICKY, T_FAILED, T_PENDING = 0.0, 1.0, 2.0, 3.0
 AMPLITUDE2_MAX = 0.25
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs):
     """Grain k moved by dt along its closed-form motion (eq. (F), flight_spring), stamped (t_hi, t_lo)."""
     if dt != 0.0:
@@ -148,7 +154,7 @@ def _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs):
     g[k, G_TL] = t_lo
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _dt(g, k, t_hi, t_lo, sl, s):
     """Time from grain k's stamp to (t_hi, t_lo): slot s's exact duration when the grain is at its origin."""
     if g[k, G_TH] == sl[s, S_T0H] and g[k, G_TL] == sl[s, S_T0L]:
@@ -156,14 +162,14 @@ def _dt(g, k, t_hi, t_lo, sl, s):
     return time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _bring(g, k, t_hi, t_lo, gamma, params, coefs):
     """Advance grain k to (t_hi, t_lo) if it is not there."""
     if g[k, G_TH] != t_hi or g[k, G_TL] != t_lo:
         _advance(g, k, t_hi, t_lo, time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL]), gamma, params, coefs)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, work):
     """First contact of a gap of eq. (F) (G = gamma: the floor; G = 0: a pair, eq. (G)) from x0 >= 0.
 
@@ -199,7 +205,7 @@ def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, w
     return FOUND, tau, v, scale + scale0, eta_t, xid_t
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_limits(x0, u, a, eta, room):
     """The window a pair's contact can lie in (module docstring): ``(start, limit, proves)``, the search
     may start at ``start`` (the gap is positive before it) and stop at ``limit`` (T*, or ``room``, the
@@ -223,7 +229,7 @@ def _pair_limits(x0, u, a, eta, room):
     return min(start, limit), limit, dpsi > 0.0 and limit == t_star
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lazy_key(t_hi, t_start):
     """A key strictly before every key add_time(t_hi, t_lo, tau) with tau >= t_start > 0 (t_hi >= 0, |t_lo| <=
     ulp(t_hi)/2): fl(t_hi + t_start) lowered by 4 eps of itself, more than the rounding of both sums."""
@@ -314,7 +320,7 @@ def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t
         update(s, t_max, math.inf, heap, pos, khi, klo)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_gap(g, i, j, seam, ell, gamma):
     """Gap state of eq. (G) for the pair (i, j), both at the same time: (x0, w, s', s, rounding noise)."""
     xi_i = g[i, G_ETA] - gamma
