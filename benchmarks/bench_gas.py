@@ -77,7 +77,7 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
                     x0 = 0.0
             t_start, t_limit, proves = _pair_limits(x0, w, sd, s0, math.inf)
             window = 8.0 * EPS * (abs(s0) + 2.0 * params[0] * abs(sd))
-            status, tau, v, sc, eta_t, xid_t = _search(x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), t_start,
+            status, tau, v, sc, eta_t, xid_t, _ = _search(x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), t_start,
                                                        t_limit, params, coefs, work)
             keys_slot[m] = slots[e, which]
             k_hi, k_lo = add_time(times[e], 0.0, tau if status == 0 else math.inf)

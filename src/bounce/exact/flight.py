@@ -102,13 +102,20 @@ def derivative_bound(zkm1, zk, zkp1):
     return math.sqrt(zk * zk + min(zkm1 * zkm1, zkp1 * zkp1))
 
 
+@njit(cache=True, inline="always")
+def flight_at(t, x0, u, a, eta, g, omc, tms, omsd, S):
+    """x(t), x'(t) and the rounding scale of x (eq. (F)) from the oscillator parts at t."""
+    x = x0 + u * t + a * tms - g * (0.5 * t * t + omc) + eta * omc
+    v = u + a * omsd - g * (t + S) + eta * S
+    scale = x0 + abs(u) * t + abs(a * tms) + g * (0.5 * t * t + abs(omc)) + abs(eta * omc)
+    return x, v, scale
+
+
 @njit(cache=True)
 def gap(t, x0, u, a, eta, g, params, coefs):
     """x(t), x'(t), the rounding scale of x, and the oscillator parts at t (eq. (F))."""
     omc, tms, omsd, c, S, Sd = fundamental(t, params, coefs)
-    x = x0 + u * t + a * tms - g * (0.5 * t * t + omc) + eta * omc
-    v = u + a * omsd - g * (t + S) + eta * S
-    scale = x0 + abs(u) * t + abs(a * tms) + g * (0.5 * t * t + abs(omc)) + abs(eta * omc)
+    x, v, scale = flight_at(t, x0, u, a, eta, g, omc, tms, omsd, S)
     return x, v, scale, omc, tms, omsd, c, S, Sd
 
 

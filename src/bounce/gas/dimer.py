@@ -76,7 +76,9 @@ Queue: one slot per contact (:mod:`bounce.gas.common`) in the indexed heap of
 a floor event two: O(log n) per event.  A slot keeps what its search ended at: the duration, by which
 grains still at the prediction's origin are advanced (others by the difference of the double-double
 times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
-the impact rule uses as the single ball's loop does (always, for one grain).
+the impact rule uses as the single ball's loop does (always, for one grain); for a pair, the oscillator's
+parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
+the grains' own evaluation would compute, without computing them again.
 
 Lazy predictions.  A pair approaching with a search window that starts at start > 0 (the gap is
 proved positive before it, above) is not searched when it is predicted: its slot keeps the search's
@@ -111,7 +113,9 @@ import numpy as np
 from numba import njit
 
 from ..exact.events import STICKY_ONSET, _is_sticky_onset, _is_tangential, contact, rounding_level
-from ..exact.flight import EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_spring, gap, liftoff_time, xi_derivatives
+from ..exact.flight import (
+    EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_at, flight_spring, gap, liftoff_time, xi_derivatives,
+)
 from ..exact.oscillator import P_MU, P_RHO
 from ..exact.short_flight import HANDOVER, MAX_DEGREE, short_flight
 from ..kinds import GRAZING as SB_GRAZING, STICKY_START as SB_STICKY
@@ -131,7 +135,11 @@ S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
 # and, for a pending (deferred) search, its inputs: the gap's state at the origin, the classification
 # window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit proves none
 S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(8, 17)
-SLOT_FIELDS = 17
+# and, for a pair's contact found by the closed-form search, the oscillator's parts at its duration (1 - c, t - S,
+# 1 - S', c, S, S'), with which the pair's grains still at the origin are moved (NaN: not kept, recomputed)
+S_PARTS = 17
+SLOT_FIELDS = 23
+NO_PARTS = (math.nan,) * 6
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
 # stops there); a search not run yet, queued at a lower bound of its contact time (module docstring)
 T_CONTACT, T_STICKY, T_FAILED, T_PENDING = 0.0, 1.0, 2.0, 3.0
@@ -155,11 +163,24 @@ def _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs):
 
 
 @njit(cache=True, inline="always")
-def _dt(g, k, t_hi, t_lo, sl, s):
-    """Time from grain k's stamp to (t_hi, t_lo): slot s's exact duration when the grain is at its origin."""
-    if g[k, G_TH] == sl[s, S_T0H] and g[k, G_TL] == sl[s, S_T0L]:
-        return sl[s, S_TAU]
-    return time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL])
+def _advance_to_contact(g, k, t_hi, t_lo, sl, s, gamma, params, coefs):
+    """Grain k of pair slot s moved to its contact at (t_hi, t_lo): by the slot's exact duration when the grain is
+    at the prediction's origin, with the oscillator's parts the search kept (those of the same duration: the bits of
+    :func:`_advance`), else as :func:`_advance` does."""
+    if not (g[k, G_TH] == sl[s, S_T0H] and g[k, G_TL] == sl[s, S_T0L]):
+        _advance(g, k, t_hi, t_lo, time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL]), gamma, params, coefs)
+        return
+    dt = sl[s, S_TAU]
+    omc, tms, omsd, c, S, Sd = sl[s, S_PARTS], sl[s, S_PARTS + 1], sl[s, S_PARTS + 2], sl[s, S_PARTS + 3], \
+        sl[s, S_PARTS + 4], sl[s, S_PARTS + 5]
+    if dt == 0.0 or math.isnan(c):
+        _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs)
+        return
+    eta, a = g[k, G_ETA], g[k, G_A]
+    g[k, G_X], g[k, G_U], _ = flight_at(dt, g[k, G_X], g[k, G_U], a, eta, gamma, omc, tms, omsd, S)
+    g[k, G_ETA], g[k, G_A] = flight_spring(eta, a, gamma, omc, c, S, Sd)
+    g[k, G_TH] = t_hi
+    g[k, G_TL] = t_lo
 
 
 @njit(cache=True, inline="always")
@@ -173,9 +194,10 @@ def _bring(g, k, t_hi, t_lo, gamma, params, coefs):
 def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, work):
     """First contact of a gap of eq. (F) (G = gamma: the floor; G = 0: a pair, eq. (G)) from x0 >= 0.
 
-    Returns ``(status, tau, v, scale, eta_t, xid_t)``: FOUND with the contact time, the gap's velocity,
-    its rounding scale (``scale0``, that of x0, plus eq. (F)'s at the contact) and the oscillator's state
-    (eta or s, and its derivative) at the contact;
+    Returns ``(status, tau, v, scale, eta_t, xid_t, parts)``: FOUND with the contact time, the gap's velocity,
+    its rounding scale (``scale0``, that of x0, plus eq. (F)'s at the contact), the oscillator's state
+    (eta or s, and its derivative) at the contact and its parts at tau (:func:`bounce.exact.oscillator.fundamental`,
+    NO_PARTS from the series of the hot path or at tau = 0);
     HORIZON, NEVER or FAILED as :func:`bounce.exact.flight.first_contact`; or -1 for a contact at zero speed
     that does not open (x0 = u = 0 and no lift-off beyond ``window``, :func:`bounce.exact.flight.liftoff_time`).
     From x0 > 0 the search starts at ``t_start`` (the caller proves x > 0 before it).  From x0 = 0:
@@ -185,24 +207,25 @@ def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, w
     mu = params[P_MU]
     if x0 == 0.0:
         if u < 0.0:
-            return FOUND, 0.0, u, scale0, eta, a
+            return FOUND, 0.0, u, scale0, eta, a, NO_PARTS
         if u == 0.0:
             t_start = liftoff_time(0.0, a, eta, G, params, window)
             if t_start == 0.0:
-                return -1, 0.0, 0.0, 0.0, eta, a
+                return -1, 0.0, 0.0, 0.0, eta, a, NO_PARTS
         elif G + abs(eta - G + 2.0 * mu * a) > 0.0:  # short_flight divides by g + |xi''(0)|
             status, tau, v, scale, dxi, xid_t = short_flight(u, a, eta, G, mu, params[P_RHO], work)
             if status == HANDOVER:
                 t_start = tau
             elif tau > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, NO_PARTS
             else:
-                return FOUND, tau, v, scale + scale0, eta + dxi, xid_t
-    status, tau, v, scale, omc, _, _, c, S, Sd, _ = first_contact(t_start, t_limit, x0, u, a, eta, G, params, coefs)
+                return FOUND, tau, v, scale + scale0, eta + dxi, xid_t, NO_PARTS
+    status, tau, v, scale, omc, tms, omsd, c, S, Sd, _ = first_contact(t_start, t_limit, x0, u, a, eta, G, params,
+                                                                      coefs)
     if status != FOUND:
-        return status, tau, 0.0, 0.0, 0.0, 0.0
+        return status, tau, 0.0, 0.0, 0.0, 0.0, NO_PARTS
     eta_t, xid_t = flight_spring(eta, a, G, omc, c, S, Sd)
-    return FOUND, tau, v, scale + scale0, eta_t, xid_t
+    return FOUND, tau, v, scale + scale0, eta_t, xid_t, (omc, tms, omsd, c, S, Sd)
 
 
 @njit(cache=True, inline="always")
@@ -288,8 +311,8 @@ def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
 def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, heap, pos, khi,
                 klo, params, coefs, work):
     """Search slot s's next contact in (t_start, t_limit] from (t_hi, t_lo) and queue it."""
-    status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs,
-                                                  work)
+    status, tau, v, scale, eta_t, xid_t, parts = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params,
+                                                         coefs, work)
     if status == -1 and G == 0.0 and eta * eta + a * a <= rounding_level(scale0) ** 2:
         # a pair in touch at relative rest with its springs' sum s at rest to rounding: relaxed (module docstring),
         # the gap stays 0 until an event changes a grain; no contact predicted (it was queued as a sticky onset)
@@ -310,6 +333,8 @@ def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t
         sl[s, S_ETA] = eta_t
         sl[s, S_XID] = xid_t
         sl[s, S_TYPE] = kind
+        for p in range(6):
+            sl[s, S_PARTS + p] = parts[p]
         k_hi, k_lo = add_time(t_hi, t_lo, tau)
         update(s, k_hi, k_lo, heap, pos, khi, klo)
         return
@@ -477,8 +502,8 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             bad = 0 if _overlap(g, 0, gamma) else -1
         else:
             # ---------------------------------------------------------------- pair (i, j)
-            _advance(g, i, t_hi, t_lo, _dt(g, i, t_hi, t_lo, sl, s), gamma, params, coefs)
-            _advance(g, j, t_hi, t_lo, _dt(g, j, t_hi, t_lo, sl, s), gamma, params, coefs)
+            _advance_to_contact(g, i, t_hi, t_lo, sl, s, gamma, params, coefs)
+            _advance_to_contact(g, j, t_hi, t_lo, sl, s, gamma, params, coefs)
             w = g[j, G_U] - (g[i, G_U] + 2.0 * g[i, G_A])
             s0 = (g[i, G_ETA] - gamma) + (g[j, G_ETA] - gamma)
             _, z2, z3, _ = xi_derivatives(s0, g[i, G_A] + g[j, G_A], mu)
