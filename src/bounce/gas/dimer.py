@@ -266,31 +266,30 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
     cannot come before a start > 0 of its window is queued pending at that start (its search deferred,
     :func:`_resolve_pending`); any other search is run now."""
     room = t_max - t_hi - t_lo
+    t_start, t_limit, proves = 0.0, room, False
     if G == 0.0:
         t_start, t_limit, proves = _pair_limits(x0, u, a, eta, room)
-        if t_limit == 0.0 and proves:
-            sl[s, S_TYPE] = T_CONTACT
-            update(s, math.inf, 0.0, heap, pos, khi, klo)
-            return
-        if t_start > 0.0:
-            sl[s, S_T0H] = t_hi
-            sl[s, S_T0L] = t_lo
-            sl[s, S_X0] = x0
-            sl[s, S_U] = u
-            sl[s, S_A] = a
-            sl[s, S_S0] = eta
-            sl[s, S_WINDOW] = window
-            sl[s, S_SCALE0] = scale0
-            sl[s, S_START] = t_start
-            sl[s, S_LIMIT] = t_limit
-            sl[s, S_PROVES] = 1.0 if proves else 0.0
-            sl[s, S_TYPE] = T_PENDING
-            update(s, _lazy_key(t_hi, t_start), 0.0, heap, pos, khi, klo)
-            return
+    if G == 0.0 and t_limit == 0.0 and proves:
+        sl[s, S_TYPE] = T_CONTACT
+        k_hi, k_lo = math.inf, 0.0
+    elif G == 0.0 and t_start > 0.0:
+        sl[s, S_T0H] = t_hi
+        sl[s, S_T0L] = t_lo
+        sl[s, S_X0] = x0
+        sl[s, S_U] = u
+        sl[s, S_A] = a
+        sl[s, S_S0] = eta
+        sl[s, S_WINDOW] = window
+        sl[s, S_SCALE0] = scale0
+        sl[s, S_START] = t_start
+        sl[s, S_LIMIT] = t_limit
+        sl[s, S_PROVES] = 1.0 if proves else 0.0
+        sl[s, S_TYPE] = T_PENDING
+        k_hi, k_lo = _lazy_key(t_hi, t_start), 0.0
     else:
-        t_start, t_limit, proves = 0.0, room, False
-    _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, heap, pos, khi,
-                klo, params, coefs, work)
+        k_hi, k_lo = _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl,
+                                 params, coefs, work)
+    update(s, k_hi, k_lo, heap, pos, khi, klo)
 
 
 @njit(cache=True)
@@ -299,26 +298,26 @@ def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
     run, bit for bit) and queue its result.  Returns False if the result precedes the lower bound it was
     queued at (never expected: the bound is proved; the caller stops the run)."""
     lazy_hi, lazy_lo = khi[s], klo[s]
-    _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW], sl[s, S_SCALE0],
-                sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H], sl[s, S_T0L], t_max, sl, heap,
-                pos, khi, klo, params, coefs, work)
+    k_hi, k_lo = _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW],
+                             sl[s, S_SCALE0], sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H],
+                             sl[s, S_T0L], t_max, sl, params, coefs, work)
+    update(s, k_hi, k_lo, heap, pos, khi, klo)
     if sl[s, S_TYPE] != T_CONTACT:
         return True  # a failed search (or a sticky start): the run stops at the slot's origin
-    return khi[s] > lazy_hi or (khi[s] == lazy_hi and klo[s] >= lazy_lo)
+    return k_hi > lazy_hi or (k_hi == lazy_hi and k_lo >= lazy_lo)
 
 
 @njit(cache=True, inline="always")
-def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, heap, pos, khi,
-                klo, params, coefs, work):
-    """Search slot s's next contact in (t_start, t_limit] from (t_hi, t_lo) and queue it."""
+def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, params, coefs,
+                work):
+    """Search slot s's next contact in (t_start, t_limit] from (t_hi, t_lo): its key (the caller queues it)."""
     status, tau, v, scale, eta_t, xid_t, parts = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params,
                                                          coefs, work)
     if status == -1 and G == 0.0 and eta * eta + a * a <= rounding_level(scale0) ** 2:
         # a pair in touch at relative rest with its springs' sum s at rest to rounding: relaxed (module docstring),
         # the gap stays 0 until an event changes a grain; no contact predicted (it was queued as a sticky onset)
         sl[s, S_TYPE] = T_CONTACT
-        update(s, math.inf, 0.0, heap, pos, khi, klo)
-        return
+        return math.inf, 0.0
     kind = T_CONTACT
     if status == FOUND or status == -1 or status == FAILED:
         if status == -1:
@@ -335,14 +334,11 @@ def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t
         sl[s, S_TYPE] = kind
         for p in range(6):
             sl[s, S_PARTS + p] = parts[p]
-        k_hi, k_lo = add_time(t_hi, t_lo, tau)
-        update(s, k_hi, k_lo, heap, pos, khi, klo)
-        return
+        return add_time(t_hi, t_lo, tau)
     sl[s, S_TYPE] = T_CONTACT
     if status == NEVER or (status == HORIZON and proves):
-        update(s, math.inf, 0.0, heap, pos, khi, klo)
-    else:  # HORIZON at t_max: after every event of the run, never fired
-        update(s, t_max, math.inf, heap, pos, khi, klo)
+        return math.inf, 0.0
+    return t_max, math.inf  # HORIZON at t_max: after every event of the run, never fired
 
 
 @njit(cache=True, inline="always")
