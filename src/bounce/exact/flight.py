@@ -44,6 +44,10 @@ and, if it lies within rounding of the floor, reported as a (tangential) contact
 x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
 polishes the root.  The only roots that can be missed are dips of x below the
 floor shallower than its rounding error, which no float64 computation can see.
+
+:func:`gap`, :func:`_minimum` and :func:`first_contact` take arrays (the oscillator) but allocate and
+keep none: they are compiled without numba's runtime (``_nrt=False``), so a call does not count
+references to its arrays (atomic operations that cost as much as an evaluation of the gap).
 """
 
 from __future__ import annotations
@@ -111,7 +115,7 @@ def flight_at(t, x0, u, a, eta, g, omc, tms, omsd, S):
     return x, v, scale
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def gap(t, x0, u, a, eta, g, params, coefs):
     """x(t), x'(t), the rounding scale of x, and the oscillator parts at t (eq. (F))."""
     omc, tms, omsd, c, S, Sd = fundamental(t, params, coefs)
@@ -148,7 +152,7 @@ def _envelope_below(level, x, v):
     return math.sqrt(xi_t * xi_t + v * v) <= level * (1.0 + 8.0 * EPS)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
     """Time of the minimum of x between t0 (x' = v0 < 0, x'' = A0) and t1 (x' >= 0): Newton on x',
     kept inside the bracket (bisection when a step would leave it)."""
@@ -171,7 +175,7 @@ def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
     return t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     """First t in (t_start, t_limit] with x(t) = 0, for the flight of eq. (F).
 

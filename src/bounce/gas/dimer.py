@@ -98,11 +98,16 @@ never run (the ring of benchmarks/bench_gas.py: a third of the root finder's eva
 before the pending key (excluded by the argument above) stops the run as ``root_finder_failed``
 rather than fire out of order; a failed search is found when its slot reaches the top.
 
-Call boundaries.  A numba call that passes arrays costs about as much as a short evaluation, so the
-per-event helpers here (advance, search window, search, queueing) are inlined into their few callers
-(``inline="always"``: the same operations in the same order, the same bits); the single ball's root
-finder is not (its copies would double the cold compile for ~2 %), and
-:func:`bounce.exact.oscillator.fundamental` is inlined into :func:`bounce.exact.flight.gap`.
+Call boundaries.  A numba call increments and decrements the reference count of every array it
+passes (atomic operations of the runtime, NRT), which cost about as much as a short evaluation.  So
+the per-event helpers here (advance, search window, search) are inlined into their few callers
+(``inline="always"``: the same operations in the same order, the same bits), and the functions called
+per prediction that take arrays but allocate none and keep none (:func:`_predict`,
+:func:`_predict_from_state`, :func:`_resolve_pending`, :func:`_overlap`; the root finder's
+:func:`~bounce.exact.flight.first_contact`, :func:`~bounce.exact.flight.gap` and
+:func:`~bounce.exact.short_flight.short_flight`) are compiled without the runtime (numba's
+``_nrt=False``: no reference counting; compiling fails if such a function ever allocates), which
+costs no compile time where inlining the root finder would double it.
 """
 
 from __future__ import annotations
@@ -260,7 +265,7 @@ def _lazy_key(t_hi, t_start):
     return k - 4.0 * EPS * k
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work):
     """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair whose contact
     cannot come before a start > 0 of its window is queued pending at that start (its search deferred,
@@ -292,7 +297,7 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
     update(s, k_hi, k_lo, heap, pos, khi, klo)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
     """Run pending slot s's deferred search (from its stored inputs: the search an eager prediction would have
     run, bit for bit) and queue its result.  Returns False if the result precedes the lower bound it was
@@ -354,7 +359,7 @@ def _pair_gap(g, i, j, seam, ell, gamma):
     return x0, w, g[i, G_A] + g[j, G_A], xi_i + xi_j, noise
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work):
     """Predict slot s from the grains' states (all involved grains at the same time)."""
     mu = params[P_MU]
@@ -385,7 +390,7 @@ def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos,
     heapify(heap, pos, khi, klo)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _overlap(g, k, gamma):
     """Does grain k break the internal energy bound xi^2 + xi'^2 < 1/4 (module docstring)?"""
     xi = g[k, G_ETA] - gamma
