@@ -251,9 +251,12 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         M3 = min(M3, derivative_bound(z2, z3, z4) * B_MARGIN)
     if v < 0.0:
         # Newton polish (x is at the rounding level); re-evaluated at the polished time, since
-        # near a tangency the step is not negligible (a first-order update would bias x')
-        t = t - x / v
-        x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        # near a tangency the step is not negligible (a first-order update would bias x'); a step below
+        # half an ulp of t leaves t, and so every value at it, as it is (no evaluation)
+        t_polished = t - x / v
+        if t_polished != t:
+            t = t_polished
+            x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
     return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd, x
 
 
