@@ -107,7 +107,7 @@ per prediction that take arrays but allocate none and keep none (:func:`_predict
 :func:`~bounce.exact.flight.first_contact`, :func:`~bounce.exact.flight.gap` and
 :func:`~bounce.exact.short_flight.short_flight`) are compiled without the runtime (numba's
 ``_nrt=False``: no reference counting; compiling fails if such a function ever allocates), which
-costs no compile time where inlining the root finder would double it.
+costs no compile time (inlining the root finder into the searches too: +25 % cold compile for ~2 %).
 """
 
 from __future__ import annotations
