@@ -8,10 +8,13 @@ What is measured, per N (default 1e3 and 1e5):
   10 N events (the cooling regime: internal modes excited, temperature falling), ``--events`` events
   are timed (CPU time of the process, ``--repeats`` times from the same warmed-up state; medians);
 * ns/event split three ways, each measured on its own over the same events:
-  - prediction: the searches the engine makes for the first 20000 of those events (the fired pair's
+  - prediction: the predictions the engine makes for the first 20000 of those events (the fired pair's
     from its contact, the two neighbours' from the grains' states), recomputed from the recorded
-    post-event states of the four grains involved;
-  - queue: the same sequence of key updates (three per event) replayed on the indexed heap;
+    post-event states of the four grains involved: every window, and the searches the lazy engine
+    runs (not those of pending slots predicted again before their window starts, :func:`engine_runs`;
+    ``searched``: their number per event);
+  - queue: the same sequence of key updates (three per event) replayed on the indexed heap (the second
+    update of a pending slot's resolution is not replayed: it counts as bookkeeping);
   - bookkeeping: the rest (advancing grains, the exchange, records): total - prediction - queue;
 * the rigid engine on the same initial state (grains of length 1) with r = 0.855, the TC model on
   (t_c = 1e-3 mean free times: without it a ring of N >> N_c(0.855) ~ 13 grains collapses at once):
@@ -39,7 +42,7 @@ from numba import njit
 from bounce.exact.flight import EPS
 from bounce.exact.short_flight import MAX_DEGREE
 from bounce.gas import GasParameters, GasRun, GasState, RigidParameters, RigidState
-from bounce.gas.dimer import G_A, G_ETA, G_U, G_X, _pair_gap, _pair_limits, _search, grain_at
+from bounce.gas.dimer import G_A, G_ETA, G_U, G_X, _lazy_key, _pair_gap, _pair_limits, _search, grain_at
 from bounce.gas.queue import add_time, heapify, update
 
 MU = 0.05
@@ -55,11 +58,13 @@ def ring(n: int, seed: int = 1):
 
 
 @njit(cache=True)
-def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times, slots):
-    """The three searches of every recorded pair event from the states of its four grains (i-1, i, j, j+1)
+def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times, slots, runs, starts):
+    """The three predictions of every recorded pair event from the states of its four grains (i-1, i, j, j+1)
     just after it, positions unwrapped (local[e, k] = x, x', xi', eta): the fired pair (i, j) from its
-    contact (gap 0, velocity the approach speed), its two neighbours from the grains' states; their keys
-    into keys_* (for the queue replay)."""
+    contact (gap 0, velocity the approach speed), its two neighbours from the grains' states.  Each
+    computes its window (its start into ``starts``) and runs its search where ``runs`` says the engine
+    does (:func:`engine_runs`); the keys into keys_* (for the queue replay: a search not run leaves the
+    lazy key of bounce.gas.dimer._lazy_key)."""
     work = np.empty(MAX_DEGREE + 2)
     g = np.zeros((4, 6))
     m = 0
@@ -76,15 +81,36 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
                 if x0 <= noise:
                     x0 = 0.0
             t_start, t_limit, proves = _pair_limits(x0, w, sd, s0, math.inf)
-            window = 8.0 * EPS * (abs(s0) + 2.0 * params[0] * abs(sd))
-            status, tau, v, sc, eta_t, xid_t = _search(x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), t_start,
-                                                       t_limit, params, coefs, work)
+            starts[e, which] = t_start
             keys_slot[m] = slots[e, which]
-            k_hi, k_lo = add_time(times[e], 0.0, tau if status == 0 else math.inf)
+            if runs[e, which]:
+                window = 8.0 * EPS * (abs(s0) + 2.0 * params[0] * abs(sd))
+                status, tau, v, sc, eta_t, xid_t, _ = _search(x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS),
+                                                              t_start, t_limit, params, coefs, work)
+                k_hi, k_lo = add_time(times[e], 0.0, tau if status == 0 else math.inf)
+            else:
+                k_hi, k_lo = _lazy_key(times[e], t_start), 0.0
             keys_hi[m] = k_hi
             keys_lo[m] = k_lo
             m += 1
     return m
+
+
+def engine_runs(starts, slots, times):
+    """Which of the recorded predictions the lazy engine searches: all but a pending one (window start > 0)
+    whose slot is predicted again (by a later event) before its start comes (bounce.gas.dimer, "Lazy
+    predictions"; those at the end of the stretch count as searched)."""
+    runs = np.ones(starts.shape, dtype=np.bool_)
+    following = {}  # slot -> time of its next prediction, filled backwards
+    for e in range(starts.shape[0] - 1, -1, -1):
+        for which in range(3):
+            s = int(slots[e, which])
+            nxt = following.get(s)
+            if starts[e, which] > 0.0 and nxt is not None and nxt < times[e] + starts[e, which]:
+                runs[e, which] = False
+        for which in range(3):
+            following[int(slots[e, which])] = times[e]
+    return runs
 
 
 @njit(cache=True)
@@ -137,8 +163,10 @@ def bench_dimer(n: int, events: int, repeats: int) -> dict:
         slots[e] = (s, (s - 1) % n, (s + 1) % n)
         speeds[e], times[e] = rec.speed[0], rec.t[0]
     keys = (np.empty(3 * m, dtype=np.int64), np.empty(3 * m), np.empty(3 * m))
-    predictions(local[:1], speeds[:1], *run.osc, *keys, times[:1], slots[:1])  # compile
-    pred = statistics.median(cpu(lambda: predictions(local, speeds, *run.osc, *keys, times, slots))[0]
+    starts = np.empty((m, 3))
+    predictions(local, speeds, *run.osc, *keys, times, slots, np.zeros((m, 3), np.bool_), starts)  # windows
+    runs = engine_runs(starts, slots, times)
+    pred = statistics.median(cpu(lambda: predictions(local, speeds, *run.osc, *keys, times, slots, runs, starts))[0]
                              for _ in range(repeats)) / m * 1e9
     queue = []
     for repeat in range(repeats + 1):  # the first compiles
@@ -150,7 +178,8 @@ def bench_dimer(n: int, events: int, repeats: int) -> dict:
     total = statistics.median(totals)
     q = statistics.median(queue)
     return {"n": n, "ns_per_event": total, "events_per_s": 1e9 / total, "min": min(totals), "max": max(totals),
-            "prediction": pred, "queue": q, "bookkeeping": total - pred - q, "split_events": m}
+            "prediction": pred, "queue": q, "bookkeeping": total - pred - q, "split_events": m,
+            "searched": runs.mean() * 3}
 
 
 def bench_rigid(n: int, events: int, repeats: int) -> dict:
@@ -188,7 +217,7 @@ def main() -> None:
         spread = "({:.0f}..{:.0f})".format(d["min"], d["max"])
         print(f"{'dimer':<8}{n:>8}{d['events_per_s']:>12.3g}{d['ns_per_event']:>10.0f}"
               f"{spread:>16}{d['prediction']:>12.0f}{d['queue']:>8.0f}"
-              f"{d['bookkeeping']:>13.0f}", flush=True)
+              f"{d['bookkeeping']:>13.0f}   searches/event: {d['searched']:.2f}", flush=True)
         r = bench_rigid(n, args.events, args.repeats)
         print(f"{'rigid':<8}{n:>8}{r['events_per_s']:>12.3g}{r['ns_per_event']:>10.0f}"
               f"{'':>16}{'':>12}{'':>8}{'':>13}   stop: {r['stop']} after {r['events']} events", flush=True)

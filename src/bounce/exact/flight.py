@@ -44,6 +44,10 @@ and, if it lies within rounding of the floor, reported as a (tangential) contact
 x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
 polishes the root.  The only roots that can be missed are dips of x below the
 floor shallower than its rounding error, which no float64 computation can see.
+
+:func:`gap`, :func:`_minimum` and :func:`first_contact` take arrays (the oscillator) but allocate and
+keep none: they are compiled without numba's runtime (``_nrt=False``), so a call does not count
+references to its arrays (atomic operations that cost as much as an evaluation of the gap).
 """
 
 from __future__ import annotations
@@ -102,13 +106,20 @@ def derivative_bound(zkm1, zk, zkp1):
     return math.sqrt(zk * zk + min(zkm1 * zkm1, zkp1 * zkp1))
 
 
-@njit(cache=True)
-def gap(t, x0, u, a, eta, g, params, coefs):
-    """x(t), x'(t), the rounding scale of x, and the oscillator parts at t (eq. (F))."""
-    omc, tms, omsd, c, S, Sd = fundamental(t, params, coefs)
+@njit(cache=True, inline="always")
+def flight_at(t, x0, u, a, eta, g, omc, tms, omsd, S):
+    """x(t), x'(t) and the rounding scale of x (eq. (F)) from the oscillator parts at t."""
     x = x0 + u * t + a * tms - g * (0.5 * t * t + omc) + eta * omc
     v = u + a * omsd - g * (t + S) + eta * S
     scale = x0 + abs(u) * t + abs(a * tms) + g * (0.5 * t * t + abs(omc)) + abs(eta * omc)
+    return x, v, scale
+
+
+@njit(cache=True, _nrt=False)
+def gap(t, x0, u, a, eta, g, params, coefs):
+    """x(t), x'(t), the rounding scale of x, and the oscillator parts at t (eq. (F))."""
+    omc, tms, omsd, c, S, Sd = fundamental(t, params, coefs)
+    x, v, scale = flight_at(t, x0, u, a, eta, g, omc, tms, omsd, S)
     return x, v, scale, omc, tms, omsd, c, S, Sd
 
 
@@ -141,7 +152,7 @@ def _envelope_below(level, x, v):
     return math.sqrt(xi_t * xi_t + v * v) <= level * (1.0 + 8.0 * EPS)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
     """Time of the minimum of x between t0 (x' = v0 < 0, x'' = A0) and t1 (x' >= 0): Newton on x',
     kept inside the bracket (bisection when a step would leave it)."""
@@ -164,7 +175,7 @@ def _minimum(t0, v0, A0, t1, x0, u, a, eta, g, mu, xi0, params, coefs):
     return t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     """First t in (t_start, t_limit] with x(t) = 0, for the flight of eq. (F).
 
@@ -240,9 +251,12 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
         M3 = min(M3, derivative_bound(z2, z3, z4) * B_MARGIN)
     if v < 0.0:
         # Newton polish (x is at the rounding level); re-evaluated at the polished time, since
-        # near a tangency the step is not negligible (a first-order update would bias x')
-        t = t - x / v
-        x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
+        # near a tangency the step is not negligible (a first-order update would bias x'); a step below
+        # half an ulp of t leaves t, and so every value at it, as it is (no evaluation)
+        t_polished = t - x / v
+        if t_polished != t:
+            t = t_polished
+            x, v, scale, omc, tms, omsd, c, S, Sd = gap(t, x0, u, a, eta, g, params, coefs)
     return FOUND, t, v, scale, omc, tms, omsd, c, S, Sd, x
 
 

@@ -220,7 +220,7 @@ def _log_room(s0, s1, s2):
     return math.log(_ROOM * smallest) if smallest > 0.0 else -math.inf
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _series_parts(t, rho, sigma, coefs):
     """Taylor sums of (1-c, t-S, 1-S') at t, truncated at the degree the tail rule allows
     (Horner in the exactly scaled time sigma t)."""
@@ -239,7 +239,7 @@ def _series_parts(t, rho, sigma, coefs):
     return omc * ts, tms * ts, omsd * ts
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _closed_form(t, params):
     """(1-c, t-S, 1-S', c, S, S') from the closed forms, for rho t > SERIES_Q.
 
@@ -284,7 +284,7 @@ def _closed_form(t, params):
     return decay - ls * S, t - S, decay + lf * S, c, S, Sd
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fundamental(t, params, coefs):
     """Return ``(omc, tms, omsd, c, S, Sd)`` at time t >= 0.
 
@@ -294,6 +294,10 @@ def fundamental(t, params, coefs):
     envelope e^{-lam_slow t} (relative, away from their zeros) in the closed-form
     branch, and in the Taylor branch (where they are 1 - omc, t - tms, 1 - omsd) to a
     few ulps of 1, t and 1 respectively (absolute; e.g. S(2) at mu = 1 is 4 ulps of S off).
+
+    Inlined (numba, with its two branches) into its few callers (gap): a call that passes the two
+    arrays cost as much as the evaluation (benchmarks/bench_gas.py: 18 % of the gas engine's time);
+    the same operations, so the same bits.
     """
     if params[P_RHO] * t <= SERIES_Q:
         omc, tms, omsd = _series_parts(t, params[P_RHO], params[P_TSCALE], coefs)

@@ -22,6 +22,8 @@ curvature bound B is a property of the flight, not of its representation), on
 the window [0, T] with T = 1.25 times the first safe step.  If the march would
 leave the window (a long or unusual flight), the caller continues with the
 closed form from the last certified time, so correctness never rests on T.
+:func:`short_flight` is compiled without numba's runtime (``_nrt=False``, as the root finder of
+:mod:`bounce.exact.flight`): it allocates nothing, so its call counts no references.
 """
 
 from __future__ import annotations
@@ -41,7 +43,7 @@ INV_FACT_RATIO = np.array([1.0 / max(k, 1) for k in range(MAX_DEGREE + 3)])  # 1
 HANDOVER = 4
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def short_flight(u, a, eta, g, mu, rho, d):
     """First contact of a flight starting on the floor with speed u > 0.
 

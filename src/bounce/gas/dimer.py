@@ -76,7 +76,38 @@ Queue: one slot per contact (:mod:`bounce.gas.common`) in the indexed heap of
 a floor event two: O(log n) per event.  A slot keeps what its search ended at: the duration, by which
 grains still at the prediction's origin are advanced (others by the difference of the double-double
 times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
-the impact rule uses as the single ball's loop does (always, for one grain).
+the impact rule uses as the single ball's loop does (always, for one grain); for a pair, the oscillator's
+parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
+the grains' own evaluation would compute, without computing them again.
+
+Lazy predictions.  A pair approaching with a search window that starts at start > 0 (the gap is
+proved positive before it, above) is not searched when it is predicted: its slot keeps the search's
+inputs (the gap's state at the origin, its rounding, the window and whether a horizon proves no
+contact) and is queued *pending* at a key strictly before origin + start (:func:`_lazy_key`: the
+float sum lowered by 4 eps of itself, more than the rounding of the double-double keys).  The search
+never returns a time before its start, so this key precedes the slot's true key.  Invariant: every
+key in the heap is the slot's true next-contact key or, for a pending slot, a key before it.  When a
+pending slot reaches the top of the heap its deferred search runs (the very search, with the very
+inputs, an eager prediction would have run at the origin: a pure function of them, so the same bits)
+and the slot is requeued at its true key before anything fires; an event fires only from the top,
+so only when its true key precedes every other slot's key and hence every other true key, in the
+order of :func:`bounce.gas.queue.before`: the events, their order and their records are those of the
+eager engine, and no contact is skipped (the contract above holds per search).  Most pending slots
+are re-predicted (a neighbour's event changes a grain) before their start comes, and their search is
+never run (the ring of benchmarks/bench_gas.py: a third of the root finder's evaluations).  A result
+before the pending key (excluded by the argument above) stops the run as ``root_finder_failed``
+rather than fire out of order; a failed search is found when its slot reaches the top.
+
+Call boundaries.  A numba call increments and decrements the reference count of every array it
+passes (atomic operations of the runtime, NRT), which cost about as much as a short evaluation.  So
+the per-event helpers here (advance, search window, search) are inlined into their few callers
+(``inline="always"``: the same operations in the same order, the same bits), and the functions called
+per prediction that take arrays but allocate none and keep none (:func:`_predict`,
+:func:`_predict_from_state`, :func:`_resolve_pending`, :func:`_overlap`; the root finder's
+:func:`~bounce.exact.flight.first_contact`, :func:`~bounce.exact.flight.gap` and
+:func:`~bounce.exact.short_flight.short_flight`) are compiled without the runtime (numba's
+``_nrt=False``: no reference counting; compiling fails if such a function ever allocates), which
+costs no compile time (inlining the root finder into the searches too: +25 % cold compile for ~2 %).
 """
 
 from __future__ import annotations
@@ -87,7 +118,9 @@ import numpy as np
 from numba import njit
 
 from ..exact.events import STICKY_ONSET, _is_sticky_onset, _is_tangential, contact, rounding_level
-from ..exact.flight import EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_spring, gap, liftoff_time, xi_derivatives
+from ..exact.flight import (
+    EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_at, flight_spring, gap, liftoff_time, xi_derivatives,
+)
 from ..exact.oscillator import P_MU, P_RHO
 from ..exact.short_flight import HANDOVER, MAX_DEGREE, short_flight
 from ..kinds import GRAZING as SB_GRAZING, STICKY_START as SB_STICKY
@@ -104,16 +137,23 @@ GRAIN_FIELDS = 6
 # columns of the slot array: the prediction's origin (double-double), its duration, what the search
 # ended at (gap velocity, rounding scale, spring state (eta or s, s') at the contact), and its type
 S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
-SLOT_FIELDS = 8
+# and, for a pending (deferred) search, its inputs: the gap's state at the origin, the classification
+# window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit proves none
+S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(8, 17)
+# and, for a pair's contact found by the closed-form search, the oscillator's parts at its duration (1 - c, t - S,
+# 1 - S', c, S, S'), with which the pair's grains still at the origin are moved (NaN: not kept, recomputed)
+S_PARTS = 17
+SLOT_FIELDS = 23
+NO_PARTS = (math.nan,) * 6
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
-# stops there)
-T_CONTACT, T_STICKY, T_FAILED = 0.0, 1.0, 2.0
+# stops there); a search not run yet, queued at a lower bound of its contact time (module docstring)
+T_CONTACT, T_STICKY, T_FAILED, T_PENDING = 0.0, 1.0, 2.0, 3.0
 
 #: the internal energy bound: xi^2 + xi'^2 < 1/4 keeps 1 + 2 xi > 0 until the grain's next event
 AMPLITUDE2_MAX = 0.25
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs):
     """Grain k moved by dt along its closed-form motion (eq. (F), flight_spring), stamped (t_hi, t_lo)."""
     if dt != 0.0:
@@ -127,28 +167,42 @@ def _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs):
     g[k, G_TL] = t_lo
 
 
-@njit(cache=True)
-def _dt(g, k, t_hi, t_lo, sl, s):
-    """Time from grain k's stamp to (t_hi, t_lo): slot s's exact duration when the grain is at its origin."""
-    if g[k, G_TH] == sl[s, S_T0H] and g[k, G_TL] == sl[s, S_T0L]:
-        return sl[s, S_TAU]
-    return time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL])
+@njit(cache=True, inline="always")
+def _advance_to_contact(g, k, t_hi, t_lo, sl, s, gamma, params, coefs):
+    """Grain k of pair slot s moved to its contact at (t_hi, t_lo): by the slot's exact duration when the grain is
+    at the prediction's origin, with the oscillator's parts the search kept (those of the same duration: the bits of
+    :func:`_advance`), else as :func:`_advance` does."""
+    if not (g[k, G_TH] == sl[s, S_T0H] and g[k, G_TL] == sl[s, S_T0L]):
+        _advance(g, k, t_hi, t_lo, time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL]), gamma, params, coefs)
+        return
+    dt = sl[s, S_TAU]
+    omc, tms, omsd, c, S, Sd = sl[s, S_PARTS], sl[s, S_PARTS + 1], sl[s, S_PARTS + 2], sl[s, S_PARTS + 3], \
+        sl[s, S_PARTS + 4], sl[s, S_PARTS + 5]
+    if dt == 0.0 or math.isnan(c):
+        _advance(g, k, t_hi, t_lo, dt, gamma, params, coefs)
+        return
+    eta, a = g[k, G_ETA], g[k, G_A]
+    g[k, G_X], g[k, G_U], _ = flight_at(dt, g[k, G_X], g[k, G_U], a, eta, gamma, omc, tms, omsd, S)
+    g[k, G_ETA], g[k, G_A] = flight_spring(eta, a, gamma, omc, c, S, Sd)
+    g[k, G_TH] = t_hi
+    g[k, G_TL] = t_lo
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _bring(g, k, t_hi, t_lo, gamma, params, coefs):
     """Advance grain k to (t_hi, t_lo) if it is not there."""
     if g[k, G_TH] != t_hi or g[k, G_TL] != t_lo:
         _advance(g, k, t_hi, t_lo, time_since(t_hi, t_lo, g[k, G_TH], g[k, G_TL]), gamma, params, coefs)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, work):
     """First contact of a gap of eq. (F) (G = gamma: the floor; G = 0: a pair, eq. (G)) from x0 >= 0.
 
-    Returns ``(status, tau, v, scale, eta_t, xid_t)``: FOUND with the contact time, the gap's velocity,
-    its rounding scale (``scale0``, that of x0, plus eq. (F)'s at the contact) and the oscillator's state
-    (eta or s, and its derivative) at the contact;
+    Returns ``(status, tau, v, scale, eta_t, xid_t, parts)``: FOUND with the contact time, the gap's velocity,
+    its rounding scale (``scale0``, that of x0, plus eq. (F)'s at the contact), the oscillator's state
+    (eta or s, and its derivative) at the contact and its parts at tau (:func:`bounce.exact.oscillator.fundamental`,
+    NO_PARTS from the series of the hot path or at tau = 0);
     HORIZON, NEVER or FAILED as :func:`bounce.exact.flight.first_contact`; or -1 for a contact at zero speed
     that does not open (x0 = u = 0 and no lift-off beyond ``window``, :func:`bounce.exact.flight.liftoff_time`).
     From x0 > 0 the search starts at ``t_start`` (the caller proves x > 0 before it).  From x0 = 0:
@@ -158,27 +212,28 @@ def _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs, w
     mu = params[P_MU]
     if x0 == 0.0:
         if u < 0.0:
-            return FOUND, 0.0, u, scale0, eta, a
+            return FOUND, 0.0, u, scale0, eta, a, NO_PARTS
         if u == 0.0:
             t_start = liftoff_time(0.0, a, eta, G, params, window)
             if t_start == 0.0:
-                return -1, 0.0, 0.0, 0.0, eta, a
+                return -1, 0.0, 0.0, 0.0, eta, a, NO_PARTS
         elif G + abs(eta - G + 2.0 * mu * a) > 0.0:  # short_flight divides by g + |xi''(0)|
             status, tau, v, scale, dxi, xid_t = short_flight(u, a, eta, G, mu, params[P_RHO], work)
             if status == HANDOVER:
                 t_start = tau
             elif tau > t_limit:
-                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0
+                return HORIZON, t_limit, 0.0, 0.0, 0.0, 0.0, NO_PARTS
             else:
-                return FOUND, tau, v, scale + scale0, eta + dxi, xid_t
-    status, tau, v, scale, omc, _, _, c, S, Sd, _ = first_contact(t_start, t_limit, x0, u, a, eta, G, params, coefs)
+                return FOUND, tau, v, scale + scale0, eta + dxi, xid_t, NO_PARTS
+    status, tau, v, scale, omc, tms, omsd, c, S, Sd, _ = first_contact(t_start, t_limit, x0, u, a, eta, G, params,
+                                                                      coefs)
     if status != FOUND:
-        return status, tau, 0.0, 0.0, 0.0, 0.0
+        return status, tau, 0.0, 0.0, 0.0, 0.0, NO_PARTS
     eta_t, xid_t = flight_spring(eta, a, G, omc, c, S, Sd)
-    return FOUND, tau, v, scale + scale0, eta_t, xid_t
+    return FOUND, tau, v, scale + scale0, eta_t, xid_t, (omc, tms, omsd, c, S, Sd)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_limits(x0, u, a, eta, room):
     """The window a pair's contact can lie in (module docstring): ``(start, limit, proves)``, the search
     may start at ``start`` (the gap is positive before it) and stop at ``limit`` (T*, or ``room``, the
@@ -202,24 +257,72 @@ def _pair_limits(x0, u, a, eta, room):
     return min(start, limit), limit, dpsi > 0.0 and limit == t_star
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _lazy_key(t_hi, t_start):
+    """A key strictly before every key add_time(t_hi, t_lo, tau) with tau >= t_start > 0 (t_hi >= 0, |t_lo| <=
+    ulp(t_hi)/2): fl(t_hi + t_start) lowered by 4 eps of itself, more than the rounding of both sums."""
+    k = t_hi + t_start
+    return k - 4.0 * EPS * k
+
+
+@njit(cache=True, _nrt=False)
 def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work):
-    """Search slot s's next contact from (t_hi, t_lo) and queue it (module docstring)."""
+    """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair whose contact
+    cannot come before a start > 0 of its window is queued pending at that start (its search deferred,
+    :func:`_resolve_pending`); any other search is run now."""
     room = t_max - t_hi - t_lo
+    t_start, t_limit, proves = 0.0, room, False
     if G == 0.0:
         t_start, t_limit, proves = _pair_limits(x0, u, a, eta, room)
-        if t_limit == 0.0 and proves:
-            update(s, math.inf, 0.0, heap, pos, khi, klo)
-            return
+    if G == 0.0 and t_limit == 0.0 and proves:
+        sl[s, S_TYPE] = T_CONTACT
+        k_hi, k_lo = math.inf, 0.0
+    elif G == 0.0 and t_start > 0.0:
+        sl[s, S_T0H] = t_hi
+        sl[s, S_T0L] = t_lo
+        sl[s, S_X0] = x0
+        sl[s, S_U] = u
+        sl[s, S_A] = a
+        sl[s, S_S0] = eta
+        sl[s, S_WINDOW] = window
+        sl[s, S_SCALE0] = scale0
+        sl[s, S_START] = t_start
+        sl[s, S_LIMIT] = t_limit
+        sl[s, S_PROVES] = 1.0 if proves else 0.0
+        sl[s, S_TYPE] = T_PENDING
+        k_hi, k_lo = _lazy_key(t_hi, t_start), 0.0
     else:
-        t_start, t_limit, proves = 0.0, room, False
-    status, tau, v, scale, eta_t, xid_t = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params, coefs,
-                                                  work)
+        k_hi, k_lo = _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl,
+                                 params, coefs, work)
+    update(s, k_hi, k_lo, heap, pos, khi, klo)
+
+
+@njit(cache=True, _nrt=False)
+def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+    """Run pending slot s's deferred search (from its stored inputs: the search an eager prediction would have
+    run, bit for bit) and queue its result.  Returns False if the result precedes the lower bound it was
+    queued at (never expected: the bound is proved; the caller stops the run)."""
+    lazy_hi, lazy_lo = khi[s], klo[s]
+    k_hi, k_lo = _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW],
+                             sl[s, S_SCALE0], sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H],
+                             sl[s, S_T0L], t_max, sl, params, coefs, work)
+    update(s, k_hi, k_lo, heap, pos, khi, klo)
+    if sl[s, S_TYPE] != T_CONTACT:
+        return True  # a failed search (or a sticky start): the run stops at the slot's origin
+    return k_hi > lazy_hi or (k_hi == lazy_hi and k_lo >= lazy_lo)
+
+
+@njit(cache=True, inline="always")
+def _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl, params, coefs,
+                work):
+    """Search slot s's next contact in (t_start, t_limit] from (t_hi, t_lo): its key (the caller queues it)."""
+    status, tau, v, scale, eta_t, xid_t, parts = _search(x0, u, a, eta, G, window, scale0, t_start, t_limit, params,
+                                                         coefs, work)
     if status == -1 and G == 0.0 and eta * eta + a * a <= rounding_level(scale0) ** 2:
         # a pair in touch at relative rest with its springs' sum s at rest to rounding: relaxed (module docstring),
         # the gap stays 0 until an event changes a grain; no contact predicted (it was queued as a sticky onset)
-        update(s, math.inf, 0.0, heap, pos, khi, klo)
-        return
+        sl[s, S_TYPE] = T_CONTACT
+        return math.inf, 0.0
     kind = T_CONTACT
     if status == FOUND or status == -1 or status == FAILED:
         if status == -1:
@@ -234,15 +337,16 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
         sl[s, S_ETA] = eta_t
         sl[s, S_XID] = xid_t
         sl[s, S_TYPE] = kind
-        k_hi, k_lo = add_time(t_hi, t_lo, tau)
-        update(s, k_hi, k_lo, heap, pos, khi, klo)
-    elif status == NEVER or (status == HORIZON and proves):
-        update(s, math.inf, 0.0, heap, pos, khi, klo)
-    else:  # HORIZON at t_max: after every event of the run, never fired
-        update(s, t_max, math.inf, heap, pos, khi, klo)
+        for p in range(6):
+            sl[s, S_PARTS + p] = parts[p]
+        return add_time(t_hi, t_lo, tau)
+    sl[s, S_TYPE] = T_CONTACT
+    if status == NEVER or (status == HORIZON and proves):
+        return math.inf, 0.0
+    return t_max, math.inf  # HORIZON at t_max: after every event of the run, never fired
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_gap(g, i, j, seam, ell, gamma):
     """Gap state of eq. (G) for the pair (i, j), both at the same time: (x0, w, s', s, rounding noise)."""
     xi_i = g[i, G_ETA] - gamma
@@ -255,7 +359,7 @@ def _pair_gap(g, i, j, seam, ell, gamma):
     return x0, w, g[i, G_A] + g[j, G_A], xi_i + xi_j, noise
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work):
     """Predict slot s from the grains' states (all involved grains at the same time)."""
     mu = params[P_MU]
@@ -286,7 +390,7 @@ def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos,
     heapify(heap, pos, khi, klo)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _overlap(g, k, gamma):
     """Does grain k break the internal energy bound xi^2 + xi'^2 < 1/4 (module docstring)?"""
     xi = g[k, G_ETA] - gamma
@@ -335,6 +439,13 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
     ctl[C_STOP] = STOP_EVENTS
     while rec < max_events:
         s = heap[0]
+        if sl[s, S_TYPE] == T_PENDING:
+            # a deferred search reached the top: run it, requeue, look again (no event fires before it)
+            if not _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+                ctl[C_STOP] = STOP_FAILED
+                ctl[C_WHERE] = s
+                break
+            continue
         t_hi = khi[s]
         t_lo = klo[s]
         if t_hi == math.inf:
@@ -392,8 +503,8 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             bad = 0 if _overlap(g, 0, gamma) else -1
         else:
             # ---------------------------------------------------------------- pair (i, j)
-            _advance(g, i, t_hi, t_lo, _dt(g, i, t_hi, t_lo, sl, s), gamma, params, coefs)
-            _advance(g, j, t_hi, t_lo, _dt(g, j, t_hi, t_lo, sl, s), gamma, params, coefs)
+            _advance_to_contact(g, i, t_hi, t_lo, sl, s, gamma, params, coefs)
+            _advance_to_contact(g, j, t_hi, t_lo, sl, s, gamma, params, coefs)
             w = g[j, G_U] - (g[i, G_U] + 2.0 * g[i, G_A])
             s0 = (g[i, G_ETA] - gamma) + (g[j, G_ETA] - gamma)
             _, z2, z3, _ = xi_derivatives(s0, g[i, G_A] + g[j, G_A], mu)

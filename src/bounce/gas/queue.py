@@ -10,6 +10,9 @@ property by sifting the slot up or down.  Cost: O(log M) per update for M slots.
 Invariants: ``heap[pos[s]] == s`` for every slot s, and no slot's key precedes its parent's in the
 order of :func:`before` (time hi, then lo, then slot index: equal times fire in slot order, so runs
 are reproducible bit for bit).  The keys live in two arrays ``khi``, ``klo`` owned by the caller.
+
+:func:`update` and its sifts are inlined into their callers (numba ``inline="always"``): a call passing the
+four arrays cost about as much as the update itself; the engines call it from one place per code path.
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ def time_since(hi, lo, t_hi, t_lo):
     return (hi - t_hi) + (lo - t_lo)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def before(s1, s2, khi, klo):
     """Does slot s1 fire before slot s2 (time hi, then lo, then slot index)?"""
     if khi[s1] != khi[s2]:
@@ -53,7 +56,7 @@ def before(s1, s2, khi, klo):
     return s1 < s2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sift_up(i, heap, pos, khi, klo):
     s = heap[i]
     while i > 0:
@@ -68,7 +71,7 @@ def _sift_up(i, heap, pos, khi, klo):
     pos[s] = i
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sift_down(i, heap, pos, khi, klo):
     m = heap.size
     s = heap[i]
@@ -100,7 +103,7 @@ def heapify(heap, pos, khi, klo):
         _sift_down(i, heap, pos, khi, klo)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def update(s, hi, lo, heap, pos, khi, klo):
     """Give slot s the key (hi, lo) and move it to its place in the heap."""
     old_hi, old_lo = khi[s], klo[s]

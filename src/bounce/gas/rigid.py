@@ -35,6 +35,10 @@ collisions not shrinking) and reports ``cooled_below_rounding`` instead of a col
 wrapped on the ring: a drift of the whole gas by D costs the gaps ~eps D of absolute precision.  Near r_c this decides at the precision float64
 allows: a sequence that ends after more collisions (~pi / arg of the complex eigenvalue of the
 three-grain map) than it takes to shrink the speeds by 1e16 (~27) is reported as a collapse.
+
+:func:`_advance` and :func:`_predict` are compiled without numba's runtime (``_nrt=False``, as the dimer
+engine's per-prediction functions, :mod:`bounce.gas.dimer`): they take arrays but allocate and keep none,
+so a call counts no references.
 """
 
 from __future__ import annotations
@@ -57,7 +61,7 @@ RIGID_FIELDS = 5
 COLLAPSE_RUN = 64
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _advance(g, k, t_hi, t_lo, gamma):
     dt = time_since(t_hi, t_lo, g[k, R_TH], g[k, R_TL])
     if dt != 0.0:
@@ -68,7 +72,7 @@ def _advance(g, k, t_hi, t_lo, gamma):
     g[k, R_TL] = t_lo
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo):
     """Queue slot s's next contact from the grains' states (all involved grains at the same time)."""
     i, j, seam = slot_grains(s, n, geometry)
