@@ -18,6 +18,7 @@ import pytest
 import xarray as xr
 
 from bounce.cli import main as cli_main
+from bounce.errors import InputError
 from bounce.gas import GasParameters, GasRun, GasState, RigidParameters, RigidState, simulate_gas, simulate_rigid
 from bounce.gas.io import checkpoint_path, from_dataset, partial_path, stream_to_netcdf, to_dataset
 from bounce.io import write_netcdf
@@ -94,6 +95,20 @@ def test_interrupted_stream_resumes_to_the_same_records(tmp_path, monkeypatch):
     stream_to_netcdf(p, s, out, 1000, snapshot_every=70, chunk=97, resume=True)
     with xr.open_dataset(out, engine="netcdf4") as ds:
         _same(one, from_dataset(ds.load()))
+
+
+def test_a_checkpoint_of_another_engine_layout_is_refused_in_one_line(tmp_path):
+    """A checkpoint whose slot table has another width (an older engine) stops the resume with the parameter named."""
+    p, s = _ring()
+    out = tmp_path / "stream.nc"
+    stream_to_netcdf(p, s, out, 100, snapshot_every=70, chunk=97)
+    out.rename(partial_path(out))
+    arrays = GasRun(p, s, np.inf, 70).arrays()
+    arrays["sl"] = arrays["sl"][:, :8]
+    np.savez(checkpoint_path(out), snapshots=np.int64(0), **arrays)
+    with pytest.raises(InputError, match="^--resume: the checkpoint's 'sl' does not fit this engine"):
+        stream_to_netcdf(p, s, out, 100, snapshot_every=70, chunk=97, resume=True)
+    assert not out.exists()
 
 
 def _run(tmp_path, *args):

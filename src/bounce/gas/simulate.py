@@ -124,7 +124,11 @@ class GasRun:
         """Back to a state of :meth:`arrays` of this run: the steps taken since are undone bit for bit (the kernels keep
         their whole state in these arrays)."""
         for name in self._state_names():
-            getattr(self, name)[...] = arrays[name]
+            mine = getattr(self, name)
+            if name not in arrays or np.shape(arrays[name]) != mine.shape:
+                raise InputError(f"--resume: the checkpoint's {name!r} does not fit this engine (written by another "
+                                 "version of bounce or another run); rerun without --resume")
+            mine[...] = arrays[name]
         self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
 
     @property
