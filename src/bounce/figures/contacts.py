@@ -200,9 +200,13 @@ def _series(ax, n, values, name):
     ax.tick_params(labelsize=6)
 
 
-def _horizon_text(horizon, ds) -> str:
-    """The float64 predictability horizon in words, for the Poincare figures' titles."""
+def _horizon_text(horizon, ds, first: int = 1) -> str:
+    """The float64 predictability horizon in words, for the Poincare figures' titles (``first``: the first contact
+    drawn; a figure that starts past the horizon says that all of it is)."""
     h, reached = _horizon(horizon, ds)
+    if reached and first > h:
+        return (r"every contact drawn is past the float64 horizon $n=%d$: the dynamics' shape, not the true "
+                r"trajectory's contacts" % h)
     if not reached:
         return r"float64 tracks the exact contacts at least to $n=%d$ (as far as the horizon study compared)" % h
     return (r"past the float64 horizon $n>%d$ the states are the dynamics' shape, not the true trajectory's contacts"
@@ -274,6 +278,7 @@ def contact_portrait_magni(datasets, spec, outputs) -> None:
     fig = plt.figure(figsize=(WIDTH, 4.4))
     grid = fig.add_gridspec(2, 1 + cols, width_ratios=(1.6,) + (1.0,) * cols, wspace=0.5, hspace=0.45)
     n, xdot, ydev, ydot = _states(ds, *spec["magni_3d"])
+    first = int(min([n[0]] + [s[0][0] for s in states]))
     _portrait_3d(fig, grid[:, 0], n, xdot, ydev, ydot, "(a) contacts %d-%d" % (n[0], n[-1]), origin=True)
     for k, (n, _, ydev, ydot) in enumerate(states):
         _projection(fig.add_subplot(grid[k // cols, 1 + k % cols]), n, ydev, ydot,
@@ -282,7 +287,7 @@ def contact_portrait_magni(datasets, spec, outputs) -> None:
                  r"(b)-(%s): projection on $(Y_n-y_{eq}, \dot Y_n)$, each window at its own scale; "
                  r"$+$: equilibrium; colour: $\log_{10} n$" "\n%s" % (spec.get("label", "very_rigid_poincare_magni"),
                                                                   _regime(ds), "bcdefgh"[len(windows) - 1],
-                                                                  _horizon_text(horizon, ds)), fontsize=8)
+                                                                  _horizon_text(horizon, ds, first)), fontsize=8)
     save(fig, outputs)
 
 
@@ -294,7 +299,8 @@ def contact_approach_magni(datasets, spec, outputs) -> None:
     y_eq - Y_n, Ydot_n and Xdot_n stay positive and decrease monotonically from ``magni_3d[0]``
     on -- the spring approaches its equilibrium length from below, with no spiral.  The legend
     counts the contacts where a coordinate has the other sign or is not smaller than the one before.  The title
-    says where the float64 predictability horizon lies (study horizon).
+    says where the float64 predictability horizon lies (study horizon), and (b) marks it (dash-dot; when the study
+    never lost track, the last contact it compared).
     """
     ds, horizon = datasets
     n, xdot, ydev, ydot = _states(ds, *spec["magni_3d"])
@@ -308,6 +314,11 @@ def contact_approach_magni(datasets, spec, outputs) -> None:
     for k, (values, name) in enumerate(((-ydev, r"$y_{eq} - Y_n$"), (ydot, YDOT), (xdot, XDOT))):
         bad += int(np.count_nonzero(values <= 0) + np.count_nonzero(np.diff(values) >= 0))
         ax.loglog(n, np.where(values > 0, values, np.nan), color=f"C{k}", label=name)
+    h, reached = _horizon(horizon, ds)
+    if n[0] < h < n[-1]:  # dash-dot: the horizon, or (not reached) the last contact the horizon study compared
+        ax.axvline(h, color="0.3", lw=0.9, ls="-.")
+        ax.text(h * 1.12, 0.63, "float64 horizon" if reached else "mpmath-checked", transform=ax.get_xaxis_transform(),
+                rotation=90, ha="left", va="center", fontsize=6, color="0.3")
     ax.set_xlabel(r"contact $n$")
     ax.set_ylabel(r"state just after contact $n$")
     ax.set_title("(b) contacts %d-%d, log-log" % (n[0], n[-1]), fontsize=8)
