@@ -262,6 +262,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.axvline(math.log(10) / c, color="C3", lw=0.8, label=r"$\ln 10/c$ (comparison map)")
     ax.set_xlabel(r"$\sum x_n$ over the last decade of $n$")
     ax.set_ylabel("sequences")
+    ax.yaxis.get_major_locator().set_params(integer=True)  # a count: no 0.5, 1.5 ticks
     ax.set_title("(b) lem. Giorgio's-2: the sums keep growing", fontsize=8)
     ax.legend(fontsize=6)
     fig.suptitle(f"Check {NAME}: the Appendix's lemmas iterated (dimensionless)", fontsize=9)

@@ -650,8 +650,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.set_xlabel(r"ratio $r$")
     ax.set_ylabel(r"impacts with ratio $< r$ (at the bin edges)")
     n_anom = int(ds["mc_count"].values[:, 1:3].sum())
-    ax.set_title("(a) Monte-Carlo low tails: %d runs, %d impacts,\n%d sticky/grazing events"
-                 % (ds.sizes["sample"], ds.attrs["n_contacts"], n_anom), fontsize=8)
+    ax.set_title("(a) Monte-Carlo low tails: {:,} runs,\n{:,} impacts, {} sticky/grazing events"
+                 .format(ds.sizes["sample"], int(ds.attrs["n_contacts"]), n_anom), fontsize=8)
     ax.legend(fontsize=6.5, loc="lower right")
     # (b) per-sample minima vs energy, in units of the anomaly threshold E_min - E_m (Lemma Min-sticky-energy)
     ax = axs[0, 1]

@@ -426,7 +426,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         axis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
         axis.set_minor_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
     ax.tick_params(which="minor", labelsize=6)
-    ax.legend(fontsize=6, loc="lower right")
+    ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2, frameon=False)  # inside, it lay on the McNamara-Young line
     fig.suptitle("rigid points on a ring: the collapse number against McNamara and Young's scale", fontsize=8)
     save(fig, outputs)
 

@@ -636,7 +636,7 @@ def _dataset(m: Measurements, spec: dict) -> xr.Dataset:
 # --------------------------------------------------------------------------- plot
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, log_binned, plt, save
+    from ..figures.common import WIDTH, legend_below, log_binned, plt, save, tex_num
 
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
     (a1, a2), (a3, a4) = axes
@@ -644,7 +644,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     if "scene" in ds.coords:
         for i, name in enumerate(ds["scene"].values):
             n = ds["series_n"].values[i]
-            lab = r"%s ($\gamma=%g$, $\mu=%g$)" % (name, ds["scene_gamma"].values[i], ds["scene_mu"].values[i])
+            lab = r"%s ($\gamma=%s$, $\mu=%s$)" % (name, tex_num(ds["scene_gamma"].values[i]),
+                                                   tex_num(ds["scene_mu"].values[i]))
             q = ds["series_q"].sel(quantity="tau").values[i]
             a1.loglog(n, np.abs(q - 1), color="k", ls=styles[i % 4], lw=1.2, label=lab, zorder=5)
             for m, qn in enumerate(QUANTITIES[1:]):
@@ -658,11 +659,11 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         tq = QUANTITIES.index("tau")
         for j, g in enumerate(gammas):
             tr = ds["atlas_transient"].values[:, j, tq]
-            a3.loglog(mus, tr, marker=mk[j % 5], ls="-", label=r"$\gamma=%.3g$" % g)
+            a3.loglog(mus, tr, marker=mk[j % 5], ls="-", label=r"$\gamma=%s$" % tex_num(g))
             p = ds["atlas_exponent"].values[:, j, tq]
             pe = ds["atlas_exponent_err"].values[:, j, tq]
             a4.errorbar(mus * (1 + 0.04 * (j - 1)), p, yerr=pe, marker=mk[j % 5], ls="none", ms=4,
-                        capsize=2, label=r"fit, $\gamma=%.3g$" % g)
+                        capsize=2, label=r"fit, $\gamma=%s$" % tex_num(g))
         mm = np.geomspace(min(mus.min(), 0.01), max(mus.max(), 5.0), 300)
         a4.semilogx(mm, [correction_exponent(x) for x in mm], "k-", lw=0.8,
                     label=r"theory $\min(1, 3\lambda/\mu)$")
@@ -686,12 +687,13 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a2.set_ylabel(r"$|q_n-1|$")
     if "scene" in ds.coords:
         mus_ = [r"$\mu=%g$" % m for m in ds["scene_mu"].values] + ["-", "-"]
-        a2.set_title("(b) the proof's other limits: largest $|q_n-1|$ per fifth of a decade\n(solid: %s, dashed: %s)"
+        a2.set_title("(b) the proof's other limits: largest $|q_n-1|$\nper fifth of a decade (solid: %s, dashed: %s)"
                      % tuple(mus_[:2]), fontsize=8)
-    a2.legend(fontsize=6, loc="lower left")
     fig.suptitle("main-theorem: approach to the limits of Theorem main_thm (units: lengths $L$, times $\\sqrt{m/2k}$)",
                  fontsize=9)
     fig.tight_layout()
+    handles, labels = a2.get_legend_handles_labels()  # on (b) the legend covered the dashed curves
+    legend_below(fig, handles, [f"(b) {lab}" for lab in labels], ncol=5)
     save(fig, outputs)
 
 

@@ -142,12 +142,20 @@ def correction_decay(m, spec) -> Verdict:
                           "Lemma Giorgio's (expansion of the map eq. mappa)", "p")
 
 
+def _tex_constants(text: str) -> str:
+    """'rho = 1, gamma = 0.01, mu = 0.3' (the dataset's constant set) in mathtext: '$\\rho=1$, $\\gamma=0.01$, ...'."""
+    from ..figures.common import tex_num
+
+    return ", ".join(f"$\\{name.strip()}={tex_num(float(value))}$" for name, value in
+                     (part.split("=") for part in text.split(",")))
+
+
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """One a x b heat map per quantity (rows) and constant set (columns): the cell's deviation from the claimed value
     in units of its error, clipped at twice the tolerance; cells the check could not determine hatched grey."""
     from matplotlib.colors import Normalize
 
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     k = float(ds.attrs["sigmas"])
     a_values, b_values = np.unique(ds["cell_a"].values), np.unique(ds["cell_b"].values)
@@ -172,17 +180,21 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                 ax.add_patch(plt.Rectangle((i, j), 1, 1, facecolor="0.85", hatch="///", edgecolor="0.5", lw=0))
             for j, i in zip(*np.nonzero(np.isfinite(zc))):
                 text = f"{zc[j, i]:.1f}".replace("-0.0", "0.0")
-                ax.text(i + 0.5, j + 0.5, text, ha="center", va="center", fontsize=5,
+                ax.text(i + 0.5, j + 0.5, text, ha="center", va="center", fontsize=6,
                         color="w" if abs(zc[j, i]) > 1.2 * k else "k")
             ax.set_xticks(np.arange(a_values.size) + 0.5, [f"{v:g}" for v in a_values], fontsize=6)
             ax.set_yticks(np.arange(b_values.size) + 0.5, [f"{v:g}" for v in b_values], fontsize=6)
             ax.grid(False)
-            ax.set_xlabel("a", fontsize=7)
-            ax.set_ylabel("b", fontsize=7)
-            ax.set_title((label + "\n" if c == 0 else "\n") + title, fontsize=6)
-    fig.colorbar(mesh, ax=axes, shrink=0.6, label=f"(value - 1)/error; tolerance +-{k:g}; hatched: not determined")
-    fig.suptitle(f"power-law spring: fitted limits over (a, b), sweep alpha-atlas ({ds.attrs['events']:.3g} events per "
-                 "cell)", fontsize=8)
+            if r == len(rows) - 1:
+                ax.set_xlabel("spring exponent $a$", fontsize=7)
+            if c == 0:
+                ax.set_ylabel("damping exponent $b$", fontsize=7)
+            letter = "abcdefghijklmnopqrstuvwxyz"[r * len(constants) + c]
+            ax.set_title((label if c == 0 else "") + f"\n({letter}) {_tex_constants(title)}", fontsize=7)
+    bar = fig.colorbar(mesh, ax=axes, shrink=0.6)
+    bar.set_label(f"(value $-$ 1)/error, clipped at $\\pm{2 * k:g}$ (tolerance $\\pm{k:g}$)", fontsize=8)
+    fig.suptitle(f"power-law spring: fitted limits over $(a, b)$, sweep alpha-atlas (${tex_num(ds.attrs['events'])}$ "
+                 "events per cell); hatched: not determined (the check leaves the cell out)", fontsize=8)
     save(fig, outputs)
 
 

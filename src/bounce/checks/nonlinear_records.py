@@ -277,7 +277,7 @@ def linear_law_recovered(m, spec) -> Verdict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, legend_below, plt, save
 
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.2))
     (a_xdd, a_x3), (a_tau, a_probe) = axes
@@ -297,7 +297,6 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         ax.set_xlabel(r"impact index $n$")
         ax.set_ylabel("relative deviation from the limit (1)")
         ax.set_title(title, fontsize=8)
-    a_xdd.legend(fontsize=5.5, loc="lower left")
     a_tau.axhline(1.0, color="k", lw=0.6)
     a_tau.set_ylim(0.0, 1.3)
     a_tau.set_xlabel(r"impact index $n$")
@@ -317,6 +316,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a_probe.legend(fontsize=5.5)
     fig.suptitle(r"power-law spring (Discussion) on its records (lengths in $L$, times in $\sqrt{m/2k}$)", fontsize=9)
     fig.tight_layout()
+    legend_below(fig, *a_xdd.get_legend_handles_labels())  # in (a) it covered the curves
     save(fig, outputs)
 
 

@@ -264,7 +264,7 @@ def repeated_impacts(m, spec) -> Verdict:
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """Restitution against impact speed: linear exp(-mu T_xi), Hertz measured (single impacts per gamma; repeated
     impacts near equilibrium), the fitted 1/5 law and the map 1 - alpha u."""
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     at = ds.attrs
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.8), constrained_layout=True)
@@ -272,7 +272,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     law = at["c2"] * u_line ** (2 * FIFTH) + (u_line / at["U"]) ** FIFTH
     for j, g in enumerate(ds["gamma"].values):
         u, r = ds["arrival"].values[:, j], ds["r"].values[:, j]
-        lab = rf"Hertz, single impact, $\gamma={g:.0e}$"
+        lab = rf"Hertz, single impact, $\gamma={tex_num(g)}$"
         style = dict(marker="osv^D"[j % 5], ms=4.5 - 0.6 * j, mfc="none", ls="none", color=f"C{j}", label=lab)
         a1.semilogx(u, r, **style)
         a2.loglog(u, np.where(r < 1, 1 - r, np.nan), **style)

@@ -335,35 +335,33 @@ def jump_coefficients_high_orders(m, spec) -> Verdict:
 # --------------------------------------------------------------------------- the figure
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, legend_below, plt, save, tex_num
 
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.6))
     (a1, a2), (a3, a4) = axes
     for i, name in enumerate(ds["scene"].values):
-        lab = r"%s ($\gamma=%g$, $\mu=%g$)" % (name, float(ds["scene_gamma"][i]), float(ds["scene_mu"][i]))
+        lab = r"%s ($\gamma=%s$, $\mu=%s$)" % (name, tex_num(ds["scene_gamma"][i]), tex_num(ds["scene_mu"][i]))
         col = f"C{i}"
         n = ds["sample_n"].values[i]
-        a1.loglog(n, ds["sample_ratio"].values[i], color=col, lw=1, label=r"$\dot X_n/(\gamma\tau_{n-1})$, " + lab)
-        a1.loglog(n, ds["sample_bound"].values[i], color=col, ls="--", lw=1, label=r"$B_n/\gamma$, " + name)
+        a1.loglog(n, ds["sample_ratio"].values[i], color=col, lw=1, label=lab)
+        a1.loglog(n, ds["sample_bound"].values[i], color=col, ls="--", lw=1)
         jn = ds["sample_jn"].values[i]
-        a2.loglog(jn, np.abs(ds["sample_jump_tau"].values[i]), color=col, lw=1,
-                  label=r"$|[\dot E(t_n)]|/\tau_{n-1}$, " + name)
-        a2.loglog(jn, ds["sample_C"].values[i], color=col, ls="--", lw=1, label=r"$C_n$, " + name)
-        a3.loglog(jn, ds["sample_jump_err"].values[i], color=col, marker=".", ms=2, ls="none", label=name)
+        a2.loglog(jn, np.abs(ds["sample_jump_tau"].values[i]), color=col, lw=1)
+        a2.loglog(jn, ds["sample_C"].values[i], color=col, ls="--", lw=1)
+        a3.loglog(jn, ds["sample_jump_err"].values[i], color=col, marker=".", ms=2, ls="none")
     a1.axhline(1.0, color="k", lw=0.6, ls=":")
     a1.set_xlabel(r"impact index $n$")
     a1.set_ylabel(r"ratio to $\gamma$ (dimensionless)")
-    a1.set_title(r"(a) eq. Xdot-is-Otau: $\dot X_n/\tau_{n-1}\leq B_n$ (dashed)", fontsize=8)
-    a1.legend(fontsize=5)
+    a1.set_title(r"(a) eq. Xdot-is-Otau: $\dot X_n/\tau_{n-1}\leq B_n$" "\n"
+                 r"solid: $\dot X_n/(\gamma\tau_{n-1})$, dashed: $B_n/\gamma$", fontsize=8)
     a2.set_xlabel(r"impact index $n$")
     a2.set_ylabel(r"$|[\dot E(t_n)]|/\tau_{n-1}$ ($2kL^2$/time$^2$)")
-    a2.set_title(r"(b) eq. jump: $[\dot E(t_n)]\leq C_n\tau_{n-1}$ (dashed)", fontsize=8)
-    a2.legend(fontsize=5)
-    a3.axhline(1.0, color="r", lw=0.8, ls="--", label="tolerance (rounding budget)")
+    a2.set_title(r"(b) eq. jump: $[\dot E(t_n)]\leq C_n\tau_{n-1}$" "\n"
+                 r"solid: $|[\dot E(t_n)]|/\tau_{n-1}$, dashed: $C_n$", fontsize=8)
+    a3.axhline(1.0, color="r", lw=0.8, ls="--")
     a3.set_xlabel(r"impact index $n$")
     a3.set_ylabel(r"$|[\dot E]-2\mu\dot X_n\dot y(t_n)|$ / budget")
-    a3.set_title("(c) eq. xidot2-jump along the run", fontsize=8)
-    a3.legend(fontsize=5.5, loc="lower left")
+    a3.set_title("(c) eq. xidot2-jump along the run\n(red dashed: the tolerance, a rounding budget)", fontsize=8)
     k = ds["k"].values
     mus = ds["probe_mu"].values
     for j, mu in enumerate(sorted(set(mus.tolist()))):
@@ -379,6 +377,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     fig.suptitle("proof-relations: Xdot = O(tau), the jump of dE/dt, the jump coefficients "
                  r"(units: lengths $L$, times $\sqrt{m/2k}$)", fontsize=9)
     fig.tight_layout()
+    legend_below(fig, *a1.get_legend_handles_labels())
     save(fig, outputs)
 
 

@@ -288,7 +288,7 @@ def our_r_rigid_ball(m, spec) -> Verdict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     a = ds.attrs
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.4))
@@ -334,8 +334,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a4.set_xlabel("bounce index $n$")
     a4.set_ylabel(r"$n^5 u_n/(5^5 U)$")
     a4.set_title(r"(d) Remark x-xbeta-map, $\beta=6/5$: limit %.5f" % a["onefifth_limit"], fontsize=8)
-    fig.suptitle(r"rigid-collapse: $\gamma=%g$, $\mu=%g$, same drop; $r_1=%.4f$, $U=%.3g$ (units: $L$, $\sqrt{m/2k}$)"
-                 % (a["gamma"], a["mu"], a["r1"], a["U"]), fontsize=9)
+    fig.suptitle(r"rigid-collapse: $\gamma=%g$, $\mu=%g$, same drop; $r_1=%.4f$, $U=%s$ (units: $L$, $\sqrt{m/2k}$)"
+                 % (a["gamma"], a["mu"], a["r1"], tex_num(a["U"])), fontsize=9)
     fig.tight_layout()
     save(fig, outputs)
 

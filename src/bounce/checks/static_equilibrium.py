@@ -305,13 +305,13 @@ def energy_prefactor_limit(m, spec) -> dict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, legend_below, plt, save, tex_num
 
     fig, axes = plt.subplots(2, 2, figsize=(WIDTH, 5.4))
     (a1, a2), (a3, a4) = axes
     for i, name in enumerate(ds["scene"].values):
         g, mu = float(ds["scene_gamma"][i]), float(ds["scene_mu"][i])
-        lab = r"%s ($\gamma=%g$, $\mu=%g$)" % (name, g, mu)
+        lab = r"%s ($\gamma=%s$, $\mu=%s$)" % (name, tex_num(g), tex_num(mu))
         n, t, e = ds["sample_n"].values[i], ds["sample_t"].values[i], ds["sample_excess"].values[i]
         col = f"C{i}"
         kth = float(ds["rate_energy_theory"][i])
@@ -320,9 +320,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         tt = kth * t[late]
         a1.semilogy(tt, e[late][-1] / e[0] * np.exp(-(tt - tt[-1])), "k:", lw=1.0)
         a2.loglog(n, e / g**2, color=col, label=lab)
-        a3.loglog(n, ds["sample_xdot"].values[i], color=col, ls="-", label=r"$\dot X_n$, " + name)
-        a3.loglog(n, ds["sample_spring"].values[i], color=col, ls="--",
-                  label=r"$\sqrt{(y-y_{eq})^2+2\dot y^2}$, " + name)
+        a3.loglog(n, ds["sample_xdot"].values[i], color=col, ls="-")
+        a3.loglog(n, ds["sample_spring"].values[i], color=col, ls="--")
         inc = ds["sample_increase"].values[i]
         a4.loglog(n, -inc, color=col, marker=".", ms=2, ls="none", label=name)
         up = inc > 0
@@ -331,27 +330,28 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a1.set_xlabel(r"$\kappa t$, $\kappa=\min(2\mu/3,2\lambda)$, $t$ in $\sqrt{m/2k}$")
     a1.set_ylabel(r"$(E-E_m)/(E-E_m)_{n=1}$")
     a1.set_title(r"(a) $E-E_m$ vs scaled time; dotted: $e^{-\kappa t}$", fontsize=8)
-    a1.legend(fontsize=5.5)
     a2.set_xlabel(r"impact index $n$")
     a2.set_ylabel(r"$(E-E_m)/\gamma^2$")
     a2.set_title(r"(b) $(E-E_m)/\gamma^2$; $\to 9/(4\mu^2 n^2)$ for $\mu^2<2$", fontsize=8)
     mu_ud = [float(m) for m in ds["scene_mu"].values if m * m < 2]
     if mu_ud:
         nn = np.geomspace(1e2, float(np.nanmax(ds["sample_n"].values)), 50)
-        a2.loglog(nn, 9 / (4 * mu_ud[0] ** 2 * nn**2), "k:", lw=0.8, label=r"$9/(4\mu^2n^2)$, $\mu=%g$" % mu_ud[0])
-    a2.legend(fontsize=5.5)
+        a2.loglog(nn, 9 / (4 * mu_ud[0] ** 2 * nn**2), "k:", lw=0.8)
+        a2.set_title(r"(b) $(E-E_m)/\gamma^2$" "\n" r"dotted: its limit $9/(4\mu^2 n^2)$ for $\mu^2<2$, $\mu=%g$"
+                     % mu_ud[0], fontsize=8)
     a3.set_xlabel(r"impact index $n$")
     a3.set_ylabel("distance from equilibrium at the events")
-    a3.set_title(r"(c) state $\to$ equilibrium ($x=0$ at events)", fontsize=8)
-    a3.legend(fontsize=5)
-    a4.axhline(float(ds.attrs["monotone_budget"]), color="r", lw=0.8, ls="--", label="rounding budget (16 eps)")
+    a3.set_title(r"(c) state $\to$ equilibrium ($x=0$ at events)" "\n"
+                 r"solid: $\dot X_n$, dashed: $\sqrt{(y-y_{eq})^2+2\dot y^2}$", fontsize=8)
+    a4.axhline(float(ds.attrs["monotone_budget"]), color="r", lw=0.8, ls="--")
     a4.set_xlabel(r"impact index $n$")
     a4.set_ylabel(r"smallest loss $-(e_{k+1}-e_k)/e_k$")
-    a4.set_title(r"(d) $e=E-E_m$ decreases at every record (increases: red $\times$)", fontsize=8)
-    a4.legend(fontsize=5.5)
+    a4.set_title(r"(d) $e=E-E_m$ decreases at every record" "\n"
+                 r"(increases: red $\times$; dashed: rounding budget, 16 eps)", fontsize=8)
     fig.suptitle("static-equilibrium: Theorem static-equilibrium, $E\\to E_m=-\\gamma^2/2$ "
                  "(units: lengths $L$, times $\\sqrt{m/2k}$)", fontsize=9)
     fig.tight_layout()
+    legend_below(fig, *a1.get_legend_handles_labels())
     save(fig, outputs)
 
 

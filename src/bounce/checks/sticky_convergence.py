@@ -267,7 +267,7 @@ def unstated_parameters(m, spec) -> Verdict:
 
 
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     fig, axs = plt.subplots(1, 3, figsize=(WIDTH, 3.0))
     eps = ds["eps"].values
@@ -288,8 +288,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.loglog(eps, ds["n_impacts"].values, "o", ms=3)
     ax.set_xlabel(r"$\epsilon$")
     ax.set_ylabel(r"impacts in $(0, t_c)$")
-    ax.set_title(r"(b) slope $%.3f$ for $\epsilon\leq%g$" % (ds.attrs["impacts_exponent"], ds.attrs["fit_eps_max"]),
-                 fontsize=8)
+    ax.set_title("(b) impacts of the lower mass;\n" r"slope $%.3f$ for $\epsilon\leq%s$"
+                 % (ds.attrs["impacts_exponent"], tex_num(ds.attrs["fit_eps_max"])), fontsize=8)
     ax = axs[2]
     g, m, tc = ds["gamma"].values, ds["mu"].values, ds["t_c_grid"].values
     cs = ax.contourf(m, g, tc, levels=20, cmap="viridis")
@@ -298,7 +298,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     ax.plot([ds.attrs["mu_inferred"]], [ds.attrs["gamma_inferred"]], "r*", ms=7)
     ax.set_xlabel(r"$\mu$")
     ax.set_ylabel(r"$\gamma$")
-    ax.set_title(r"(c) $t_c(\gamma,\mu)$; white: $5.23\leq t_c<5.24$", fontsize=8)
+    ax.set_title(r"(c) $t_c(\gamma,\mu)$;" "\n" r"white: $5.23\leq t_c<5.24$", fontsize=8)
     fig.suptitle(f"Check {NAME}: section 8.2, inferred $\\gamma={ds.attrs['gamma_inferred']:g}$, "
                  f"$\\mu={ds.attrs['mu_inferred']:g}$, $t_c={ds.attrs['t_c']:.4f}$ (dimensionless units)", fontsize=8.5)
     fig.tight_layout()

@@ -37,13 +37,14 @@ def energy_decay(datasets, spec, outputs) -> None:
                     label=r"$\propto e^{-\kappa t}$, $\kappa=%s$" % tex_num(kappa, 4))
         ax.set_xlabel(r"$t - t_1$  [$\sqrt{m/2k}$]")
         ax.set_title("(%s) %s" % ("abc"[i], _regime(ds)), fontsize=8)
-        ax.set_ylim(top=30 * e.max())  # headroom for the legend
+        ax.set_ylim(top=1e3 * e.max())  # headroom for the legend, off the curve
         ax.legend(fontsize=6.5, loc="upper right")
         slope = np.polyfit(np.log(n[late]), np.log(e[late]), 1)[0]
         a_n.loglog(n, e, color=f"C{i}", label=r"$\mu=%s$: slope $%.2f$, expected $-3\kappa/\mu=%.2f$"
                    % (tex_num(mu), slope, -3 * kappa / mu))
     axes[0].set_ylabel(r"$E - E_m$")
     a_n.set_xlabel(r"impact index $n$")
+    a_n.set_ylabel(r"$E - E_m$", labelpad=1)
     a_n.set_title("(%s) both, against $n$; slopes fitted\nfor $n\\geq n_{max}/100$" % "abc"[len(datasets)], fontsize=7)
     fig.legend(*a_n.get_legend_handles_labels(), loc="lower right", fontsize=6.5, frameon=False, ncol=2,
                title="(c), slope of $\\ln(E-E_m)$ against $\\ln n$:", title_fontsize=6.5)
@@ -66,8 +67,10 @@ def asymptotic_laws(datasets, spec, outputs) -> None:
         sel = idx >= 1
         a1.semilogx(idx[sel], idx[sel] * tau_n[sel] * mu / 3.0, color=f"C{i}", label=_regime(ds))
         a2.semilogx(n, n * ds["xdot"].values * mu / (3.0 * gamma), color=f"C{i}", label=_regime(ds))
-    for ax, lab in ((a1, r"$n\,\tau_n\,\mu/3$"), (a2, r"$n\,\dot X_n\,\mu/(3\gamma)$")):
+    for ax, lab, title in ((a1, r"$n\,\tau_n\,\mu/3$", r"(a) flight time $\tau_n$"),
+                           (a2, r"$n\,\dot X_n\,\mu/(3\gamma)$", r"(b) impact speed $\dot X_n$")):
         ax.axhline(1.0, color="k", lw=0.6, ls="--")
+        ax.set_title(title + " (dashed: the limit 1)", fontsize=8)
         ax.set_xlabel(r"impact index $n$")
         ax.set_ylabel(lab)
         ax.set_ylim(0.0, 2.0)

@@ -68,6 +68,13 @@ def log_binned(x: np.ndarray, v: np.ndarray, stat, per_decade: int = 5, least: i
             np.array([stat(v[idx == k]) for k in bins]))
 
 
+def legend_below(fig, handles, labels, ncol: int = 3, fontsize: float = 6.5) -> None:
+    """One legend for the whole figure, hung under its lowest labels, off every panel (the tight bounding box of
+    :func:`save` takes it in).  Call it after ``tight_layout``."""
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=fontsize,
+               frameon=False)
+
+
 def tex_num(x, digits: int = 3) -> str:
     """``x`` for mathtext (inside ``$...$``), the one number format of every figure text:
     0.01 -> ``0.01``, 1e-05 -> ``10^{-5}``, 2.5e-05 -> ``2.5\\times10^{-5}``, 3e+05 -> ``3\\times10^{5}``

@@ -85,8 +85,9 @@ def rest_coeff(datasets, spec, outputs) -> None:
     ax.set_xlim(0, m[-1] + 1)
     ax.set_ylabel(r"$r_n$")
     ax.legend(loc="center left", fontsize=7)
-    ax.set_title(r"Fig. rest-coeff: $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
-                 % (tex_num(ds.attrs["gamma"]), tex_num(mu), tex_num(ds.attrs["x0"])))
+    fig.suptitle(r"Fig. rest-coeff: $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$, $\xi(0)=\dot\xi(0)=\dot\psi(0)=0$"
+                 % (tex_num(ds.attrs["gamma"]), tex_num(mu), tex_num(ds.attrs["x0"])), fontsize=9)
+    ax.set_title(r"(a) the restitution coefficient of the $n$-th macroscopic flight", fontsize=7, loc="left", pad=2)
     bx.set_ylabel(r"$\tau_{2n+1}/T_\xi$", fontsize=8)
     bx.set_xlabel(r"$n$ (macroscopic flight)")
     bx.set_title(r"(b) the contact between $f_n$ and $f_{n+1}$: its inner flight $\tau_{2n+1}\approx T_\xi$ "
@@ -199,20 +200,27 @@ def _series(ax, n, values, name):
     ax.tick_params(labelsize=6)
 
 
-def _horizon_text(horizon, ds) -> str:
-    """The float64 predictability horizon in words, for the Poincare figures' titles."""
+def _horizon_text(horizon, ds, first: int = 1) -> str:
+    """The float64 predictability horizon in words, for the Poincare figures' titles (``first``: the first contact
+    drawn; a figure that starts past the horizon says that all of it is)."""
     h, reached = _horizon(horizon, ds)
+    if reached and first > h:
+        return (r"every contact drawn is past the float64 horizon $n=%d$: the dynamics' shape, not the true "
+                r"trajectory's contacts" % h)
     if not reached:
         return r"float64 tracks the exact contacts at least to $n=%d$ (as far as the horizon study compared)" % h
     return (r"past the float64 horizon $n>%d$ the states are the dynamics' shape, not the true trajectory's contacts"
             % h)
 
 
-def _mark_horizon(axes, horizon, ds, n_last: int) -> None:
-    """A dash-dot line at the float64 horizon H and the contacts past it shaded, when H falls inside the panel."""
+def _mark_horizon(axes, bar, horizon, ds, n_last: int) -> None:
+    """A dash-dot line at the float64 horizon H and the contacts past it shaded, when H falls inside the panel; the
+    same line on the colour bar (log10 n), so that the colours past the horizon can be told in the 3-D view too."""
     h, reached = _horizon(horizon, ds)
     if not reached or h >= n_last:
         return
+    bar.ax.axhline(np.log10(h + 0.5), color="0.3", lw=1.2, ls="-.")
+    bar.set_label(bar.ax.get_ylabel() + "; dash-dot: float64 horizon", fontsize=7)
     for ax in axes:
         ax.axvline(h + 0.5, color="0.3", lw=0.9, ls="-.")
         ax.axvspan(h + 0.5, n_last * 1.5, color="0.92", zorder=0)
@@ -228,8 +236,8 @@ def contact_portrait(datasets, spec, outputs) -> None:
     the double impacts' zig-zag (sign of Ydot_n alternating) and the disordered transient for
     mu < 1; for mu = 2 the spring shrinking for the first impacts, then expanding towards its
     equilibrium length monotonically from below (Y_n - y_eq < 0 rising to 0), as section 8.1 says.
-    The float64 predictability horizon (study horizon: the contacts whose times float64 gets to 1e-8 of the mpmath
-    reference) is marked in (b) and (c): past it the contacts are not those of the true system, only its shape.
+    The float64 predictability horizon H (study horizon: the contacts whose times float64 gets to 1e-8 of the mpmath
+    reference) is marked in (b) and (c) and on the colour bar (the colours of (a) past it): past it the contacts are not those of the true system, only its shape.
     """
     ds, horizon = datasets
     n, xdot, ydev, ydot = _states(ds, 0, int(spec["events"]))
@@ -240,14 +248,14 @@ def contact_portrait(datasets, spec, outputs) -> None:
     axes[1] = fig.add_subplot(grid[1, 1], sharex=axes[0])
     for ax, values, name, letter in zip(axes, (ydot, ydev), (YDOT, YDEV), "bc"):
         _series(ax, n, values, name)
-        ax.set_title(f"({letter})", loc="left", fontsize=7, pad=2)
-    _mark_horizon(axes, horizon, ds, int(n[-1]))
+        ax.set_title(f"({letter}) {name} against $n$", loc="left", fontsize=7, pad=2)
     axes[0].set_xlim(0.7, n[-1] * 1.3)
     axes[0].tick_params(labelbottom=False)
     axes[1].set_xlabel(r"contact $n$", fontsize=8)
     bar = fig.colorbar(pts, ax=axes, shrink=0.8, pad=0.03, aspect=30)
     bar.set_label(r"$\log_{10} n$ (contact index)", fontsize=7)
     bar.ax.tick_params(labelsize=6)
+    _mark_horizon(axes, bar, horizon, ds, int(n[-1]))
     fig.suptitle(r"Fig. %s: %s, contacts 1-%d (lengths in $L$, speeds in $L/\sqrt{m/2k}$; "
                  r"$y_{eq}=1-2\gamma$)" "\n%s" % (spec.get("label", "very_rigid_poincare"), _regime(ds), n[-1],
                                               _horizon_text(horizon, ds)), fontsize=8)
@@ -270,6 +278,7 @@ def contact_portrait_magni(datasets, spec, outputs) -> None:
     fig = plt.figure(figsize=(WIDTH, 4.4))
     grid = fig.add_gridspec(2, 1 + cols, width_ratios=(1.6,) + (1.0,) * cols, wspace=0.5, hspace=0.45)
     n, xdot, ydev, ydot = _states(ds, *spec["magni_3d"])
+    first = int(min([n[0]] + [s[0][0] for s in states]))
     _portrait_3d(fig, grid[:, 0], n, xdot, ydev, ydot, "(a) contacts %d-%d" % (n[0], n[-1]), origin=True)
     for k, (n, _, ydev, ydot) in enumerate(states):
         _projection(fig.add_subplot(grid[k // cols, 1 + k % cols]), n, ydev, ydot,
@@ -278,7 +287,7 @@ def contact_portrait_magni(datasets, spec, outputs) -> None:
                  r"(b)-(%s): projection on $(Y_n-y_{eq}, \dot Y_n)$, each window at its own scale; "
                  r"$+$: equilibrium; colour: $\log_{10} n$" "\n%s" % (spec.get("label", "very_rigid_poincare_magni"),
                                                                   _regime(ds), "bcdefgh"[len(windows) - 1],
-                                                                  _horizon_text(horizon, ds)), fontsize=8)
+                                                                  _horizon_text(horizon, ds, first)), fontsize=8)
     save(fig, outputs)
 
 
@@ -290,7 +299,8 @@ def contact_approach_magni(datasets, spec, outputs) -> None:
     y_eq - Y_n, Ydot_n and Xdot_n stay positive and decrease monotonically from ``magni_3d[0]``
     on -- the spring approaches its equilibrium length from below, with no spiral.  The legend
     counts the contacts where a coordinate has the other sign or is not smaller than the one before.  The title
-    says where the float64 predictability horizon lies (study horizon).
+    says where the float64 predictability horizon lies (study horizon), and (b) marks it (dash-dot; when the study
+    never lost track, the last contact it compared).
     """
     ds, horizon = datasets
     n, xdot, ydev, ydot = _states(ds, *spec["magni_3d"])
@@ -304,6 +314,11 @@ def contact_approach_magni(datasets, spec, outputs) -> None:
     for k, (values, name) in enumerate(((-ydev, r"$y_{eq} - Y_n$"), (ydot, YDOT), (xdot, XDOT))):
         bad += int(np.count_nonzero(values <= 0) + np.count_nonzero(np.diff(values) >= 0))
         ax.loglog(n, np.where(values > 0, values, np.nan), color=f"C{k}", label=name)
+    h, reached = _horizon(horizon, ds)
+    if n[0] < h < n[-1]:  # dash-dot: the horizon, or (not reached) the last contact the horizon study compared
+        ax.axvline(h, color="0.3", lw=0.9, ls="-.")
+        ax.text(h * 1.12, 0.63, "float64 horizon" if reached else "mpmath-checked", transform=ax.get_xaxis_transform(),
+                rotation=90, ha="left", va="center", fontsize=6, color="0.3")
     ax.set_xlabel(r"contact $n$")
     ax.set_ylabel(r"state just after contact $n$")
     ax.set_title("(b) contacts %d-%d, log-log" % (n[0], n[-1]), fontsize=8)

@@ -20,9 +20,10 @@ def sticky_convergence(datasets, spec, outputs) -> None:
     eps_max = float(check.attrs["fit_eps_max"])
     eps = ds["eps"].values
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.9))
-    panels = ((a1, "n_impacts", r"impacts in $(0,t_c)$", "impacts_exponent"),
-              (a2, "rms", r"$\Vert y_\epsilon - y_s\Vert$ (eq. L2-norm)  [$L$]", "rms_exponent"))
-    for ax, var, lab, reported in panels:
+    panels = ((a1, "n_impacts", r"impacts in $(0,t_c)$", "impacts_exponent", "(a) impacts of the lower mass"),
+              (a2, "rms", r"$\Vert y_\epsilon - y_s\Vert$ (eq. L2-norm)  [$L$]", "rms_exponent",
+               "(b) RMS distance to the sticky solution"))
+    for ax, var, lab, reported, title in panels:
         y = ds[var].values
         ok = (eps > 0) & (y > 0)
         fit = ok & (eps <= eps_max)
@@ -40,6 +41,7 @@ def sticky_convergence(datasets, spec, outputs) -> None:
             ax.loglog(eps[ok], y[k] * eps[ok] / eps[k], color="0.3", lw=0.8, ls=":", label="slope 1 (linear)")
         ax.set_xlabel(r"$\epsilon$ ($=\dot X_0$, eq. sticky-ic)")
         ax.set_ylabel(lab)
+        ax.set_title(title, fontsize=8)
         ax.legend(loc="best", fontsize=6.5)
     fig.suptitle(r"Fig. sticky-convergence: $\gamma=%s$, $\mu=%s$, $t_c=%.4f$; slopes fitted for "
                  r"$\epsilon\leq%s$, as in the validation report"

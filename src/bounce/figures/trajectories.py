@@ -101,7 +101,7 @@ def sticky_traj(datasets, spec, outputs) -> None:
     axes = np.atleast_1d(axes)
     sticky = [ds for ds in datasets if np.any(ds["kind"].values == DETACH)]
     t_c = float(sticky[0]["t"].values[sticky[0]["kind"].values == DETACH][0]) if sticky else None
-    for ax, ds in zip(axes, datasets):
+    for letter, ax, ds in zip("abcdefgh", axes, datasets):
         x, y = _curves(ds, times)
         ax.plot(times, y, color="C0", label=r"$y(t)$, upper mass")
         ax.plot(times, x, color="C1", label=r"$x(t)$, lower mass")
@@ -120,7 +120,7 @@ def sticky_traj(datasets, spec, outputs) -> None:
         if t_c is not None:
             ax.axvline(t_c, color="C3", lw=0.8, ls="--", label=r"$t_c$ (end of the $\epsilon=0$ sticky contact)")
         ax.set_ylabel(r"height  [$L$]")
-        ax.set_title(r"$\epsilon = %s$: %s" % (tex_num(eps), what), fontsize=8)
+        ax.set_title(r"(%s) $\epsilon = %s$: %s" % (letter, tex_num(eps), what), fontsize=8)
     if t_c is not None:
         axes[0].annotate(r"$t_c=%.4f$" % t_c, xy=(t_c, 0.5), xycoords=("data", "axes fraction"),
                          xytext=(4, 0), textcoords="offset points", color="C3", fontsize=7)

@@ -147,7 +147,7 @@ def plot_switch_study(ds, spec, outputs) -> None:
     """Error in y and E against delta, impacts against delta, and the exact solver's n(t) ~ e^{mu t/3}."""
     from matplotlib.lines import Line2D
 
-    from ..figures.common import WIDTH, plt, save, tex_num
+    from ..figures.common import WIDTH, legend_below, plt, save, tex_num
 
     fig, axes = plt.subplots(1, 3, figsize=(WIDTH, 2.7))
     a1, a2, a3 = axes
@@ -168,7 +168,7 @@ def plot_switch_study(ds, spec, outputs) -> None:
         if np.count_nonzero(ok) > 2:
             t0 = np.interp(n_min, nc[np.isfinite(tc)], tc[np.isfinite(tc)])
             a3.semilogy(float(d["mu"]) * (tc[ok] - t0) / 3.0, nc[ok] / n_min, color=f"C{i}", lw=1.2)
-            a3.text(0.03, 0.92 - 0.08 * i, r"$b=%.5f$, $\mu/3=%.5f$" % (float(d["rate_fit"]), float(d["rate_theory"])),
+            a3.text(0.03, 0.92 - 0.08 * i, r"$b=%.4g$, $\mu/3=%.4g$" % (float(d["rate_fit"]), float(d["rate_theory"])),
                     color=f"C{i}", transform=a3.transAxes, fontsize=6)
     d = ds["delta"].values
     handles.append(Line2D([], [], color="0.4", lw=0.8, ls=":", label=r"$\delta^2/4$"))
@@ -177,20 +177,20 @@ def plot_switch_study(ds, spec, outputs) -> None:
     a1.loglog(d, d**2 / 4, color="0.4", lw=0.8, ls=":")
     a1.set_xlabel(r"switch threshold $\delta$ on $\dot X_n$")
     a1.set_ylabel(r"error on $[0,t_{\max}]$ ($y$ in $L$)")
-    a1.legend(handles=handles, fontsize=5.5, loc="lower right")
     a2.set_xlabel(r"switch threshold $\delta$ on $\dot X_n$")
     a2.set_ylabel(r"impacts computed to $t_{\max}$")
-    a2.set_title("cost (dotted: exact solver)", fontsize=8)
+    a2.set_title("(b) cost (dotted: exact solver)", fontsize=8)
     x = np.linspace(0.0, a3.get_xlim()[1], 50)
     a3.semilogy(x, np.exp(x), color="k", lw=0.6, ls="--", label=r"$e^{\mu (t-t_{n_0})/3}$")
     a3.legend(fontsize=6, loc="lower right")
     a3.set_xlabel(r"$\mu\,(t_n - t_{n_0})/3$,  $n_0=%d$" % n_min)
     a3.set_ylabel(r"$n/n_0$ (exact solver)")
-    a3.set_title(r"exact cost: $n(t)\sim C\,e^{bt}$", fontsize=8)
-    a1.set_title(r"error against the exact solver", fontsize=8)
+    a3.set_title(r"(c) exact cost: $n(t)\sim C\,e^{bt}$", fontsize=8)
+    a1.set_title(r"(a) error against the exact solver", fontsize=8)
     fig.suptitle(r"Contact switch: exact until $\dot X_n<\delta$, then $x=\dot x=0$ and eq. y-eq-sticky "
                  r"(lengths in $L$, time in $\sqrt{m/2k}$)", fontsize=8)
     fig.tight_layout()
+    legend_below(fig, handles, [h.get_label() for h in handles], ncol=3)
     save(fig, outputs)
 
 

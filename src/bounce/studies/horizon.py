@@ -517,8 +517,10 @@ def plot_horizon(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set_yticks([1e-40, 1e-32, 1e-24, 1e-16, 1e-8, 1.0])
         lam_n = float(d["lambda_n"].sel(precision="float64"))
         lam_t = float(d["lambda_t"].sel(precision="float64"))
-        axes[0][col].set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$"
-                               % tuple(tex_num(float(d[k])) for k in ("gamma", "mu", "psi0")), fontsize=8)
+        axes[0][col].set_title(r"(%s) $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$"
+                               % (("abcdefgh"[col],) + tuple(tex_num(float(d[k])) for k in ("gamma", "mu", "psi0"))),
+                               fontsize=8)
+        axes[1][col].set_title(r"(%s) the same against the time $t_n$" % "abcdefgh"[len(names) + col], fontsize=8)
         h64 = int(d["horizon"].sel(precision="float64"))
         if np.isfinite(lam_n):
             txt_n = r"$H_{64}=%d$, fit $\lambda_n=%.2f$" % (h64, lam_n)

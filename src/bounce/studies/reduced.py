@@ -246,8 +246,6 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
             pad = 0.05 * max(np.ptp(drawn), 0.05)
             a2.set_ylim(drawn.min() - pad, drawn.max() + pad)
         a2.axvline(paired - 0.5, color="k", lw=0.6, ls="--")
-        a2.text(paired - 0.5, 0.4, " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
-                transform=a2.get_xaxis_transform(), fontsize=6, va="center")
         ends = np.concatenate([d["t_model_end"].values, d["t_rest"].values])
         ends = ends[np.isfinite(ends)]
         a1.set_xlim(0.0, 1.25 * ends.max() if ends.size else None)
@@ -255,13 +253,20 @@ def plot_reduced_vs_dimer(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.set_ylim(1e-12, 3)
         label_time(a1)
         a1.set_ylabel(r"$(E-E_{\rm rest})/(E_0-E_{\rm rest})$")
-        a1.set_title(r"$\gamma=%s$, $\mu=%s$, $\psi(0)=%s$:" "\n" r"energy (dotted: collapse/contact)"
-                     % (tex_num(float(d["gamma"])), tex_num(float(d["mu"])), tex_num(float(d["psi0"]))), fontsize=7)
+        a1.set_title(r"(%s) $\gamma=%s$, $\mu=%s$, $\psi(0)=%s$:" "\n" r"energy (dotted: collapse/contact)"
+                     % ("abcdefgh"[2 * i], tex_num(float(d["gamma"])), tex_num(float(d["mu"])),
+                        tex_num(float(d["psi0"]))), fontsize=7)
         a2.set_xscale("log")
+        # the note on the side of the dashed line with more room, inside the axes
+        lo, hi = a2.get_xlim()
+        right_half = np.log(paired - 0.5) - np.log(lo) > 0.5 * (np.log(hi) - np.log(lo))
+        a2.text(paired - 0.5, 0.4, "dimer: double impacts end \n(contact %d); no $r_n$ beyond " % (paired + 1)
+                if right_half else " dimer: double impacts end\n (contact %d); no $r_n$ beyond" % (paired + 1),
+                transform=a2.get_xaxis_transform(), fontsize=6, va="center", ha="right" if right_half else "left")
         a2.set_xlabel(r"macroscopic bounce $n$")
         a2.set_ylabel(r"$r_n$")
-        a2.set_title(r"$r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots);" "\n" r"rigid models $u_{n+1}/u_n$ (lines)",
-                     fontsize=7)
+        a2.set_title(r"(%s) $r_n$: dimer $f_{n+1}/f_n$, $f_n=\tau_{2n}$ (dots);" "\n" r"rigid models $u_{n+1}/u_n$ "
+                     "(lines)" % "abcdefgh"[2 * i + 1], fontsize=7)
     handles, labs = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labs, loc="lower center", ncol=3, fontsize=7, frameon=False)
     fig.suptitle("Rigid-ball restitution models against the two-mass ball (time in $\\sqrt{m/2k}$; $E_{\\rm rest}$: "
@@ -629,7 +634,7 @@ def plot_least_model(ds: xr.Dataset, spec: dict, outputs) -> None:
         qois = [q.split(":") for q in str(d["tolerance"].values).split("; ")]
         lines = ["%s, tol $%s$" % (QOI_TEXT.get(q.strip(), q), tex_num(float(tol))) for q, tol in qois]
         chosen = _candidate_text(ch, str(d["setting"].sel(candidate=ch).values))
-        ax.set_title("%s\n%s\nchosen: %s" % (sc, "\n".join(lines), chosen), fontsize=6)
+        ax.set_title("(%s) %s\n%s\nchosen: %s" % ("abcdefghijklmnop"[k], sc, "\n".join(lines), chosen), fontsize=6)
         ts = d["cpu"].values[np.isfinite(d["cpu"].values)]
         if ts.size:
             ax.set_xlim(ts.min() / 3, ts.max() * 3)

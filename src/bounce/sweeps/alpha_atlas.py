@@ -162,7 +162,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
 
-    from ..figures.common import WIDTH, save
+    from ..figures.common import WIDTH, save, tex_num
 
     a, b = ds["a"].values, ds["b"].values
     nc = ds.sizes["constants"]
@@ -189,12 +189,11 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set_xlabel("$a$", fontsize=7)
             lab = r"$\lim n\dot X_n\alpha$" if q == "alpha" else r"$\lim \dot X_n/(\gamma\tau_n)$"
             ax.set_ylabel(f"{lab}\n$b$" if c == 0 else "$b$", fontsize=7)
-            if j == 0:
-                ax.set_title(rf"$\rho={float(ds['rho'][c]):g}$, $\gamma={float(ds['gamma'][c]):g}$, "
-                             rf"$\mu={float(ds['mu'][c]):g}$", fontsize=7)
+            ax.set_title(rf"({'abcdefghijkl'[j * nc + c]}) $\rho={tex_num(ds['rho'][c])}$, "
+                         rf"$\gamma={tex_num(ds['gamma'][c])}$, $\mu={tex_num(ds['mu'][c])}$", fontsize=7)
             ax.grid(False)
     fig.colorbar(mesh, ax=axes, shrink=0.8, label=r"$|L-1|$ (Richardson)")
-    fig.suptitle(f"power-law spring: the Discussion's limits over (a, b), {ds.attrs['events']:.3g} events per cell "
+    fig.suptitle(f"power-law spring: the Discussion's limits over (a, b), ${tex_num(ds.attrs['events'])}$ events per cell "
                  f"\n(numbers: decay exponent of the correction, theory 1; grey: not determined, limit error above "
                  f"{ds.attrs['err_max']:g}: check nonlinear-atlas leaves these cells out)", fontsize=7)
     save(fig, outputs)

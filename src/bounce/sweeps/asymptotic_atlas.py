@@ -102,7 +102,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     from matplotlib.colors import LogNorm
     from matplotlib.ticker import NullFormatter
 
-    from ..figures.common import WIDTH, save
+    from ..figures.common import WIDTH, save, tex_num
 
     mu, gamma = ds["mu"].values, ds["gamma"].values
     fig, axes = plt.subplots(1, 3, figsize=(WIDTH, 2.5), sharey=True, constrained_layout=True)
@@ -111,20 +111,20 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         (np.abs(ds["limit"].sel(quantity="xdot").values - 1.0), r"$|L-1|$, $L=\lim\, n\dot X_n\mu/(3\gamma)$", "viridis"),
         (ds["transient"].sel(quantity="tau").values, r"transient of $n\tau_n\mu/3$ [impacts]", "magma"),
     ]
-    for ax, (z, title, cmap) in zip(axes, panels):
+    for ax, (z, title, cmap), letter in zip(axes, panels, "abc"):
         z = np.where(np.isfinite(z) & (z > 0), z, np.nan)
         finite = z[np.isfinite(z)]
         norm = LogNorm(vmin=max(finite.min(), 1e-16), vmax=max(finite.max(), 2e-16)) if finite.size else None
         ax.set_facecolor("0.85")  # grey: not determined (no fit window / never settled)
         mesh = ax.pcolormesh(log_edges(gamma), log_edges(mu), z, shading="flat", cmap=cmap, norm=norm)
         fig.colorbar(mesh, ax=ax, shrink=0.9)
-        ax.set(xscale="log", yscale="log", xlabel=r"$\gamma$", title=title)
+        ax.set(xscale="log", yscale="log", xlabel=r"$\gamma$", title=f"({letter}) {title}")
         ax.grid(False)
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.yaxis.set_minor_formatter(NullFormatter())
     axes[0].set_ylabel(r"$\mu$")
     fig.suptitle(f"Theorem main_thm over {mu.size} x {gamma.size} (mu, gamma), psi(0) = {ds.attrs['psi0']:g}, "
-                 f"{ds.attrs['events']:.3g} events (grey: not determined)", fontsize=8)
+                 f"${tex_num(ds.attrs['events'])}$ events (grey: not determined)", fontsize=8)
     save(fig, outputs)
 
 

@@ -193,7 +193,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.plot(n, np.nanmedian(values, axis=1) if np.isfinite(values).any() else values[:, 0], "-" if not filled
                     else "--", color=color, lw=0.9, label=label)
     a1.set(xscale="log", yscale="log", xlabel="grains in the column n",
-           ylabel="time (dimensionless, units sqrt(m/2k))")
+           ylabel=r"time  [$\sqrt{m/2k}$]")
     a1.set_title(f"(a) dimers: E - E_min down to {ds.attrs['rest']:g} of its start;\nrigid rods: collapse "
                  f"(the engine's stop)", fontsize=8)
     a2.set(xscale="log", yscale="log", xlabel="grains in the column n", ylabel="impacts to rest (floor and pair)")
@@ -202,9 +202,10 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         ax.set_xticks(n, [str(int(k)) for k in n])
         ax.xaxis.set_minor_locator(plt.matplotlib.ticker.NullLocator())
         ax.legend(fontsize=6)
+    # labels at 1, 2, 5 x 10^k only (every minor tick labelled crowded 900 into 1000)
+    a1.yaxis.set_major_locator(plt.matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
     a1.yaxis.set_major_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
-    a1.yaxis.set_minor_formatter(plt.matplotlib.ticker.FormatStrFormatter("%g"))
-    a1.tick_params(which="minor", labelsize=6)
+    a1.yaxis.set_minor_formatter(plt.matplotlib.ticker.NullFormatter())
     fig.suptitle(f"a column of n grains dropped from rest (gamma = {ds.attrs['gamma']:g}, lowest mass at height "
                  f"{ds.attrs['height']:g}, gaps < {ds.attrs['gap']:g}); dots: {int(ds.attrs['samples'])} states, "
                  f"lines: median", fontsize=7)

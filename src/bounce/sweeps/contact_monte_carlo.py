@@ -213,13 +213,17 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                 continue
             cum = np.cumsum(hist[reg]) / total
             keep = cum > 0
-            ax.step(edges[1:][keep], cum[keep], where="post", label=f"{name} ({total:.3g} impacts)")
+            ax.step(edges[1:][keep], cum[keep], where="post", label=f"{name} ({int(total):,} impacts)")
         ax.set(xscale="log", yscale="log", xlabel=xlabel, ylabel="fraction of impacts below")
     r = np.geomspace(1e-4, 1e-1, 10)
     axes[0].plot(r, 0.5 * r**2, "k:", label=r"$\propto r^2$ (grazing dip)")
     axes[1].axvline(1.0, color="k", ls="--", lw=0.8, label="window: tangential below")
-    axes[0].legend(loc="upper left")
-    axes[1].legend(loc="lower right")
+    axes[0].set_title("(a) speed ratio at an impact: the grazing dip", fontsize=8)
+    axes[1].set_title("(b) impact speed over the classifier's window", fontsize=8)
+    handles, labels = axes[0].get_legend_handles_labels()
+    window = axes[1].get_legend_handles_labels()
+    fig.legend(handles + window[0][-1:], labels + window[1][-1:], loc="outside lower center", ncols=3, fontsize=7,
+               frameon=False)
     a = ds.attrs
     fig.suptitle(f"Theorem contact-non-generic: {a['n_samples']:,} random states x {a['events']} events; "
                  f"grazing {a['n_grazing']}, sticky_start {a['n_sticky_start']}", fontsize=8)

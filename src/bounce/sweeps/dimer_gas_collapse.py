@@ -116,10 +116,11 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
                         label=f"r={r:g}, n={n}")
     lim = a1.get_xlim()
     a1.plot(lim, lim, "k-", lw=0.6, label="dimer time = rigid collapse time")
-    a1.set(xlabel="rigid twin's collapse time", ylabel="dimer gas: time of its last collision")
+    a1.set(xlabel=r"rigid twin's collapse time  [$\sqrt{m/2k}$]",
+           ylabel=r"dimers' last collision  [$\sqrt{m/2k}$]")
     a1.set_title("(a) the dimers go on past the rigid collapse", fontsize=8)
-    a2.set(xscale="log", yscale="log", xlabel="collisions per unit time, first tenth",
-           ylabel="collisions per unit time, last tenth")
+    a2.set(xscale="log", yscale="log", xlabel=r"collision rate, first tenth  [$1/\sqrt{m/2k}$]",
+           ylabel=r"collision rate, last tenth  [$1/\sqrt{m/2k}$]")
     a2.set_title("(b) the dimers' collision rate does not diverge", fontsize=8)
     for ax in (a1, a2):
         ax.legend(fontsize=5)

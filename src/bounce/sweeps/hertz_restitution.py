@@ -106,19 +106,19 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """(1 - r)/(first-order loss) and the residual spring velocity against u, one curve per gamma."""
     import matplotlib.pyplot as plt
 
-    from ..figures.common import WIDTH, save
+    from ..figures.common import WIDTH, save, tex_num
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.8), constrained_layout=True)
     for j, gamma in enumerate(ds["gamma"].values):
         u = ds["arrival"].values[:, j]
         a1.semilogx(u, (1.0 - ds["r"].values[:, j]) / ds["loss_first_order"].values[:, j], "o-", ms=2.5,
-                    label=rf"$\gamma={gamma:.0e}$")
-        a2.loglog(u, np.abs(ds["residual"].values[:, j]), "o-", ms=2.5, label=rf"$\gamma={gamma:.0e}$")
+                    label=rf"$\gamma={tex_num(gamma)}$")
+        a2.loglog(u, np.abs(ds["residual"].values[:, j]), "o-", ms=2.5, label=rf"$\gamma={tex_num(gamma)}$")
     a1.axhline(1.0, color="k", lw=0.6)
     a1.set_ylim(0.5, 1.5)
     a1.set(xlabel=r"impact speed $u$ (units $L/\sqrt{m/2k}$)", ylabel=r"$(1-r)\,/\,$first-order cycle loss")
     a1.set_title("(a) single Hertz impact: measured over the gravity-free law", fontsize=8)
-    a2.set(xlabel=r"impact speed $u$", ylabel=r"$|\dot\xi|/u$ after the contact")
+    a2.set(xlabel=r"impact speed $u$ (units $L/\sqrt{m/2k}$)", ylabel=r"$|\dot\xi|/u$ after the contact")
     a2.set_title(r"(b) spring left moving by gravity ($=\gamma T_c/u$)", fontsize=8)
     for ax in (a1, a2):
         ax.legend(fontsize=6)

@@ -140,20 +140,22 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         x = ds[edge].values / uc
         open_ = (ds[edge].values == ds[bound].values) | (x < edges[0]) | (x > edges[-1])
         x = np.clip(x, edges[0], edges[-1])
-        a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4, label="band edges u1, u2" if edge == "u1" else None)
-        a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w",
-                label="edge at the run's end or off the grid" if edge == "u1" and open_.any() else None)
+        a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4)
+        a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w")
     a1.axvline(1.0, color="w", lw=0.6, ls="--")
     a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
-    a1.set_title(f"eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
-    a1.legend(fontsize=6, loc="lower left")
+    a1.set_title(f"(a) eq. our-r fails where the median error of 1 - r > {thr:g};\nwhite <, >: the band's edges u1, u2 "
+                 "(hollow: the run's end\nor off the grid); grey: no bounce at that speed", fontsize=6.5)
     centres = ds["u_bin"].values
+    by_mu = plt.cm.ScalarMappable(LogNorm(mu.min(), mu.max()) if mu.min() < mu.max() else None, cmap="plasma")
     for i, m in enumerate(mu):
-        a2.loglog(centres, med[i], "-", lw=0.9, color=plt.cm.viridis(i / max(mu.size - 1, 1)), label=rf"$\mu={m:.3g}$")
-    a2.axhline(thr, color="k", ls="--", lw=0.8, label="threshold")
+        a2.loglog(centres, med[i], "-", lw=0.9, color=by_mu.to_rgba(m))
+    fig.colorbar(by_mu, ax=a2, shrink=0.9, label=r"$\mu$")
+    a2.axhline(thr, color="k", ls="--", lw=0.8)
     a2.axvline(1.0, color="0.5", ls=":", lw=0.8)
     a2.set(xlabel=r"landing speed $u / u_c$", ylabel=r"median $|(1-r)/(1-r_{\rm our})-1|$")
-    a2.legend(fontsize=5, ncol=2)
+    a2.set_title(f"(b) the same error, one line per $\\mu$;\ndashed: the threshold {thr:g}; dotted: $u = u_c$",
+                 fontsize=6.5)
     a = ds.attrs
     fig.suptitle(r"Eq. our-r against the dimer: $\gamma=%s$, drop from $\psi(0)=%s$, $%s$ events per $\mu$; "
                  "r = ratio of successive landing speeds" % (tex_num(a["gamma"]), tex_num(a["psi0"]), tex_num(a["events"])),

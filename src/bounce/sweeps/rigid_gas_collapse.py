@@ -131,9 +131,11 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     for i, r in enumerate(ds["r"].values):
         a1.semilogx(ds["n"].values, ds["p_collapse"].values[i], "o-", ms=3, label=f"r = {r:g}")
     a1.axhline(0.5, color="0.6", lw=0.6, ls="--")
-    a1.set(xlabel="grains n on the ring", ylabel="fraction of states that collapse", ylim=(-0.05, 1.05))
+    # headroom above the fractions (<= 1) for the legend, off the curves
+    a1.set(xlabel="grains n on the ring", ylabel="fraction of states that collapse", ylim=(-0.05, 1.5),
+           yticks=np.linspace(0.0, 1.0, 6))
     a1.set_title(f"(a) collapse against n ({int(ds.attrs['samples'])} random states each)", fontsize=8)
-    a1.legend(fontsize=6)
+    a1.legend(fontsize=6, loc="upper center", ncols=3, columnspacing=0.8, handlelength=1.5)
     scale, n_c, err = ds["my_scale"].values, ds["n_c"].values, ds["n_c_err"].values
     ok = np.isfinite(n_c)
     a2.errorbar(scale[ok], n_c[ok], yerr=err[ok], fmt="o", ms=3, capsize=2, label=r"$N_c(r)$, this ring")

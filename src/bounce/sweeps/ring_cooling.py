@@ -191,9 +191,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         lo = min(np.nanmin(ds[f"T_{m}"].values[i] / T0[:, None]) for m in MODELS)
         ax.set_ylim(max(lo / 3.0, 1e-12), 2.0)
         ax.set(xlabel=r"$t/t_0$ (Haff's $t_0$ of each state)", ylabel=r"$T/T_0$, internal energy $/T_0$")
-        ax.set_title(f"r = {r:g}, n = {n}: temperature, {ds.sizes['sample']} states", fontsize=8)
-        if i == 0:
-            ax.legend(fontsize=5.5, loc="lower left")
+        letters = iter("abcdefghijklmnopqrstuvwxyz"[4 * i:4 * i + 4])
+        ax.set_title(f"({next(letters)}) r = {r:g}, n = {n}: temperature, {ds.sizes['sample']} states", fontsize=8)
         for j, model in enumerate(MODELS, start=1):
             ax = axes[i, j]
             w = ds[f"worldline_{model}"].values[i, 0]
@@ -211,12 +210,14 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
             ax.set(xlim=(0, n), ylim=(0, wt[-1]), xlabel="position (L)")
             if j == 1:
                 ax.set_ylabel(r"time (dimensionless, $\sqrt{m/2k}$)")
-            ax.set_title(f"{_SHORT[model]}, r = {r:g}", fontsize=8)
+            ax.set_title(f"({next(letters)}) {_SHORT[model]}, r = {r:g}", fontsize=8)
             ax.grid(False)
     every = int(ds["wl_grain"].values[1] - ds["wl_grain"].values[0]) if ds.sizes["wl_grain"] > 1 else n
     fig.suptitle(f"free cooling on a ring of {n} grains (dimensionless units: lengths in L, times in sqrt(m/2k); "
                  f"rms speed {ds.attrs['speed']:g}, TC model t_c = {ds.attrs['t_c']:g}); world lines: every "
                  f"{every} grain(s), state 0", fontsize=8)
+    # one legend under the panels (in the first temperature panel it covered the dimers' internal energy)
+    fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside lower center", ncols=5, fontsize=7, frameon=False)
     save(fig, outputs)
 
 
