@@ -120,7 +120,7 @@ def test_atlas_reproduces_the_main_theorem_limits():
 
 
 def test_our_r_band_is_a_band_around_u_c():
-    """Eq. our-r (check restitution, claim our-r-band): 1 - r = 1 - e^{-mu T_xi} holds for the macroscopic bounces
+    """Eq. our-r (check our-r, claim our-r-band): 1 - r = 1 - e^{-mu T_xi} holds for the macroscopic bounces
     well above u_c (sec. 8; within the threshold, here u/u_c ~ 30, the drop's first landings at mu = 0.01) and fails
     at the stitch u = u_c, where the dimer's 1 - r is neither branch's.  The band's upper edge lies between them."""
     ds = _gathered("our-r-band", BAND, shards=1, workers=1)

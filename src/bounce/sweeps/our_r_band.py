@@ -2,16 +2,19 @@
 
 Eq. ``our-r`` (:func:`bounce.analysis.theory.our_r`) stitches r = e^{-mu T_xi} (large impact speeds u, the
 macroscopic bounce of sec. 8) to r = 1 - mu u/(3 gamma) (small u, eq. ``restituzione``) at
-u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The check ``restitution`` (claim
+u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The check ``our-r`` (claim
 ``our-r-band``) finds, on one drop (gamma = 1e-5, mu = 0.01), that the law is right on both sides
-and wrong in a band [u1, u2] around u_c.  This sweep maps that band over a log grid of mu
-(under-damped, mu < 1; one item per mu): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
+and wrong in a band [u1, u2] around u_c, whose edges the two branches' error models predict.  This sweep
+maps that band over a log grid of mu (under-damped, mu < 1; one item per mu; the check's claim
+``same-structure-across-mu`` judges it): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and r is measured per macroscopic bounce exactly as the
 check does (:func:`bounce.analysis.restitution.double_impact` and
-:func:`~bounce.analysis.restitution.our_r_test`, imported, not re-coded): r = ratio of successive
+:func:`~bounce.analysis.restitution.band_test`, imported, not re-coded): r = ratio of successive
 landing speeds u = Xdot of the lower mass, over the initial run of double impacts and then over
 every impact.  It is judged on the dissipated fraction, err = (1 - r)/(1 - r_our) - 1 (where
-1 - r ~ 1e-4, a relative error of r itself says nothing).
+1 - r ~ 1e-4, a relative error of r itself says nothing).  Per mu also the band's predicted edges (u1 from the
+small-u model's spring term |ydot_n|/(4 mu gamma), u2 = gamma (ln(1/thr) -+ 1)/(2 mu)) and the bounces beyond
+the measured band on each side.
 
 Per mu the bounces are binned on a log grid of u/u_c (``u_over_uc``): in each (mu, u/u_c) cell the
 number of bounces, the median and largest |err| and the fraction with |err| > ``our_r_threshold``;
@@ -27,7 +30,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..analysis.restitution import double_impact, our_r_test
+from ..analysis.restitution import band_test, double_impact
 from ..io import to_dataset
 from ..model import Parameters, State
 from ..simulate import simulate
@@ -35,6 +38,8 @@ from ..analysis.theory import u_c
 from .base import ITEM, Sweep, axis, log_edges
 
 NAME = "our-r-band"
+#: the band's predicted edges per mu (bounce.analysis.restitution.band_edges)
+PREDICTED = ("u1_predicted_low", "u1_predicted", "u1_predicted_high", "u2_predicted_low", "u2_predicted_high")
 
 
 def size(spec: dict) -> int:
@@ -46,13 +51,16 @@ def prepare(spec: dict, items: np.ndarray) -> dict:
 
 
 def bounce_errors(spec: dict, mu: float) -> dict:
-    """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band."""
+    """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band with its
+    predicted edges and the bounces beyond it."""
     gamma = float(spec["gamma"])
     start = State.from_psi_xi(float(spec["psi0"]), 0.0, 0.0, 0.0)
     ds = to_dataset(simulate(Parameters(gamma, mu), start, max_events=int(spec["events"])))
-    measured = our_r_test(ds, double_impact(ds, spec), spec)
+    measured = band_test(ds, double_impact(ds, spec), spec)
     return {"u": measured["u"], "err": measured["err"], "u_c": u_c(gamma, mu),
-            "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1))}
+            "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1)),
+            **dict(zip(PREDICTED, measured["small"] + measured["large"])),
+            "bounces_below_band": measured["below"], "bounces_above_band": measured["above"]}
 
 
 def compute(spec: dict, inputs: dict) -> dict:
@@ -61,15 +69,18 @@ def compute(spec: dict, inputs: dict) -> dict:
     m = len(inputs["mu"])
     out = {k: np.full((m, n_bins), np.nan) for k in ("median_err", "max_err", "fraction_failing")}
     out["bounces"] = np.zeros((m, n_bins), dtype=np.int64)
-    for k in ("u_c", "u1", "u2", "u_min", "u_max"):
+    for k in ("u_c", "u1", "u2", "u_min", "u_max") + PREDICTED:
         out[k] = np.full(m, np.nan)
-    out["double_bounces"] = np.zeros(m, dtype=np.int64)
+    for k in ("double_bounces", "bounces_below_band", "bounces_above_band"):
+        out[k] = np.zeros(m, dtype=np.int64)
     thr = float(spec["our_r_threshold"])
     for i, mu in enumerate(inputs["mu"]):
         b = bounce_errors(spec, float(mu))
         ok = np.isfinite(b["err"])
         u, err = b["u"][ok], np.abs(b["err"][ok])
         out["u_c"][i], out["u1"][i], out["u2"][i], out["double_bounces"][i] = b["u_c"], b["u1"], b["u2"], b["double"]
+        for k in PREDICTED + ("bounces_below_band", "bounces_above_band"):
+            out[k][i] = b[k]
         if u.size:
             out["u_min"][i], out["u_max"][i] = u.min(), u.max()
         cell = np.searchsorted(edges, u / b["u_c"], side="right") - 1
@@ -87,7 +98,7 @@ _C = (ITEM, "u_bin")
 VARIABLES = {
     "mu": ((ITEM,), "damping mu = nu / sqrt(2 k m)", "1", None),
     "median_err": (_C, "median over the cell's bounces of |(1 - r)/(1 - r_our) - 1|", "1",
-                   "r: ratio of successive landing speeds (check restitution); r_our: eq. our-r; NaN: no bounce"),
+                   "r: ratio of successive landing speeds (check our-r); r_our: eq. our-r; NaN: no bounce"),
     "max_err": (_C, "largest |(1 - r)/(1 - r_our) - 1| over the cell's bounces", "1", None),
     "fraction_failing": (_C, "fraction of the cell's bounces with |(1 - r)/(1 - r_our) - 1| > our_r_threshold",
                          "1", None),
@@ -100,6 +111,17 @@ VARIABLES = {
     "u_min": ((ITEM,), "smallest landing speed measured", "sqrt(2k/m) L", None),
     "u_max": ((ITEM,), "largest landing speed measured", "sqrt(2k/m) L", None),
     "double_bounces": ((ITEM,), "bounces of the initial double-impact run", "1", None),
+    "u1_predicted_low": ((ITEM,), "predicted u1, low end: first bounce from below with |ydot_n|/(4 mu gamma) > "
+                         "thr - thr^2", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u1_predicted": ((ITEM,), "predicted u1: first bounce from below with |ydot_n|/(4 mu gamma) > thr "
+                     "(the small-u branch's error model)", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u1_predicted_high": ((ITEM,), "predicted u1, high end: first bounce from below with |ydot_n|/(4 mu gamma) > "
+                          "thr + thr^2", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u2_predicted_low": ((ITEM,), "predicted u2, low end: gamma (ln(1/thr) - 1)/(2 mu) (the large-u branch's "
+                         "error model)", "sqrt(2k/m) L", None),
+    "u2_predicted_high": ((ITEM,), "predicted u2, high end: gamma (ln(1/thr) + 1)/(2 mu)", "sqrt(2k/m) L", None),
+    "bounces_below_band": ((ITEM,), "macroscopic bounces slower than u1", "1", "0: no failing bounce"),
+    "bounces_above_band": ((ITEM,), "macroscopic bounces faster than u2", "1", "0: no failing bounce"),
 }
 
 
@@ -127,7 +149,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     mu, thr = ds["mu"].values, float(ds.attrs["our_r_threshold"])
     uc = ds["u_c"].values
     med = ds["median_err"].values
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.8), constrained_layout=True)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.6), constrained_layout=True)
     finite = med[np.isfinite(med) & (med > 0)]
     norm = LogNorm(vmin=max(finite.min(), 1e-6), vmax=max(finite.max(), 1.0)) if finite.size else None
     a1.set_facecolor("0.85")  # grey: no bounce at that speed
@@ -143,17 +165,22 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4, label="band edges u1, u2" if edge == "u1" else None)
         a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w",
                 label="edge at the run's end or off the grid" if edge == "u1" and open_.any() else None)
+    # the edges the error models predict (bounce.analysis.restitution.band_edges), a bar per mu, clipped to the grid
+    for lo, hi, label in (("u1_predicted_low", "u1_predicted_high", "predicted edges"),
+                          ("u2_predicted_low", "u2_predicted_high", None)):
+        a1.hlines(mu, np.clip(ds[lo].values / uc, edges[0], edges[-1]), np.clip(ds[hi].values / uc, edges[0], edges[-1]),
+                  color="C3", lw=2.5, zorder=1.5, label=label)
     a1.axvline(1.0, color="w", lw=0.6, ls="--")
     a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
     a1.set_title(f"eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
-    a1.legend(fontsize=6, loc="lower left")
+    a1.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
     centres = ds["u_bin"].values
     for i, m in enumerate(mu):
         a2.loglog(centres, med[i], "-", lw=0.9, color=plt.cm.viridis(i / max(mu.size - 1, 1)), label=rf"$\mu={m:.3g}$")
     a2.axhline(thr, color="k", ls="--", lw=0.8, label="threshold")
     a2.axvline(1.0, color="0.5", ls=":", lw=0.8)
     a2.set(xlabel=r"landing speed $u / u_c$", ylabel=r"median $|(1-r)/(1-r_{\rm our})-1|$")
-    a2.legend(fontsize=5, ncol=2)
+    a2.legend(fontsize=5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=4, frameon=False)
     a = ds.attrs
     fig.suptitle(r"Eq. our-r against the dimer: $\gamma=%s$, drop from $\psi(0)=%s$, $%s$ events per $\mu$; "
                  "r = ratio of successive landing speeds" % (tex_num(a["gamma"]), tex_num(a["psi0"]), tex_num(a["events"])),
