@@ -277,6 +277,8 @@ def _spread(ax, u, v, color, label):
 def _scene_panels(ds, a5, a6) -> None:
     """(a) r per bounce against u with eq. our-r; (b) 1 - r in both speed conventions; the band and its predicted
     edges shaded and marked in both."""
+    from ..figures.common import tex_num
+
     u, r, dbl = ds["bounce_u"].values, ds["bounce_r"].values, ds["bounce_double"].values.astype(bool)
     g, mu = float(ds.attrs["rest_gamma"]), float(ds.attrs["rest_mu"])
     uu = np.geomspace(u.min(), u.max(), 400)
@@ -292,9 +294,10 @@ def _scene_panels(ds, a5, a6) -> None:
     a5.semilogx(uu, our_r(uu, g, mu), "C3-", lw=1, label="eq. our-r")
     a5.set_xscale("log")
     a5.set_ylim(0.6, 1.2)
-    a5.set_xlabel(r"impact speed $u=\dot X$ of the lower mass  [$L/\sqrt{m/2k}$]")
+    a5.set_xlabel(r"impact speed $u=\dot X$")
     a5.set_ylabel(r"restitution per bounce $r$")
-    a5.set_title(r"(a) %s ($\gamma=%g$, $\mu=%g$): eq. our-r vs the dimer" % (ds.attrs["rest_scene"], g, mu), fontsize=7)
+    a5.set_title("(a) %s ($\\gamma=%s$, $\\mu=%s$):\nrestitution per bounce, eq. our-r vs the dimer" % (
+        ds.attrs["rest_scene"], tex_num(g), tex_num(mu)), fontsize=7)
     one = 1 - r
     pos = one > 0
     _spread(a6, u[pos & ~dbl], one[pos & ~dbl], "0.3", r"$u=\dot X$, $r=\dot X_{n+1}/\dot X_n$")
@@ -306,13 +309,15 @@ def _scene_panels(ds, a5, a6) -> None:
     a6.set_yscale("log")
     a6.loglog(uu, 1 - our_r(uu, g, mu), "C3-", lw=1, label=r"eq. our-r")
     a6.loglog(uu, 1 - our_r(uu, g, mu, com=True), "C1--", lw=1, label=r"$1-2\mu u/(3\gamma)$")
-    a6.set_xlabel(r"impact speed $u$  [$L/\sqrt{m/2k}$]")
+    a6.set_xlabel(r"impact speed $u$ (key below)")
     a6.set_ylabel(r"dissipated fraction $1-r$")
-    a6.set_title(r"(b) dissipation per bounce, two speed conventions", fontsize=7)
+    a6.set_title("(b) dissipated fraction per bounce,\nlower-mass and centre-of-mass speeds", fontsize=7)
 
 
 def _sweep_panel(ds, ax) -> None:
     """(c) per mu of the sweep: the measured band [u1, u2]/u_c against its predicted edges, the drop's speed range."""
+    from ..figures.common import tex_num
+
     mu = ds["sweep_mu"].values
     lo_, hi_ = ds["sweep_u_min"].values, ds["sweep_u_max"].values
     ax.fill_betweenx(mu, lo_, hi_, color="0.9", lw=0, label="speeds the drop samples")
@@ -328,8 +333,8 @@ def _sweep_panel(ds, ax) -> None:
             ax.plot(ds["sweep_u2"].values[keep], mu[keep], "|", color=colour, ms=7, label=label)
     ax.axvline(1.0, color="k", ls=":", lw=0.8, label="$u_c$")
     ax.set(xscale="log", yscale="log", xlabel=r"landing speed $u/u_c$", ylabel=r"damping $\mu$")
-    ax.set_title(r"(c) sweep our-r-band ($\gamma=%g$, $%d$ events per $\mu$): the band per drop" % (
-        ds.attrs["sweep_gamma"], ds.attrs["sweep_events"]), fontsize=7)
+    ax.set_title(r"(c) sweep our-r-band ($\gamma=%s$, $%s$ events per $\mu$): the band [$u_1$, $u_2$] of each drop" % (
+        tex_num(ds.attrs["sweep_gamma"]), tex_num(ds.attrs["sweep_events"])), fontsize=7)
     ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.02, 0.5), frameon=False)
 
 
@@ -337,8 +342,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     from ..figures.common import WIDTH, plt, save
 
     sweep = "sweep_mu" in ds
-    fig = plt.figure(figsize=(WIDTH, 6.6 if sweep else 3.9))
-    grid = fig.add_gridspec(3 if sweep else 2, 2, height_ratios=(1.0, 0.32, 0.9) if sweep else (1.0, 0.32))
+    fig = plt.figure(figsize=(WIDTH, 7.6 if sweep else 4.4), layout="constrained")
+    grid = fig.add_gridspec(3 if sweep else 2, 2, height_ratios=(1.0, 0.3, 0.95) if sweep else (1.0, 0.3))
     if "bounce_u" in ds:
         a5, a6 = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
         _scene_panels(ds, a5, a6)
@@ -352,7 +357,6 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     if sweep:
         _sweep_panel(ds, fig.add_subplot(grid[2, :]))
     fig.suptitle("eq. our-r, the stitched restitution law (speeds in $L/\\sqrt{m/2k}$)", fontsize=9)
-    fig.tight_layout()
     save(fig, outputs)
 
 

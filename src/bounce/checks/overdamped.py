@@ -186,7 +186,7 @@ def overdamped_inelastic(m, spec) -> dict:
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """(a) y - y_eq at the impacts against n, with n0; (b) its monotone approach from below, log-log, against the
     over-damped decay n^(-3 lambda/mu)."""
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.0), constrained_layout=True)
     if "od_n" in ds:
@@ -196,7 +196,8 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.axhline(0, color="C2", lw=0.8, label="equilibrium length")
         a1.axvline(ds.attrs["od_n0"], color="C3", ls=":", label=r"$n_0=%d$: negative and rising from here" % ds.attrs["od_n0"])
         a1.set(xlabel="impact index $n$", ylabel=r"$(y-y_{eq})/\gamma$ at impact $n$")
-        a1.set_title(r"(a) %s ($\gamma=%g$, $\mu=%g$): spring length vs equilibrium" % (ds.attrs["od_scene"], g, mu),
+        a1.set_title(r"(a) %s ($\gamma=%s$, $\mu=%s$): spring length vs equilibrium" % (ds.attrs["od_scene"], tex_num(g),
+                                                                                          tex_num(mu)),
                      fontsize=7)
         a1.legend(fontsize=6, loc="lower right")
         neg = w < 0

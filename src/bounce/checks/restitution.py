@@ -267,7 +267,7 @@ def falcon_comparison(m, spec) -> dict:
 def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     """(a) r_m on the first 80 bounces (clipped beyond the axis) with the centre-of-mass ratios and exp(-mu T_xi) on
     the plateau; (b) the contact times against T_xi and their prediction.  Legends below the panels."""
-    from ..figures.common import WIDTH, plt, save
+    from ..figures.common import WIDTH, plt, save, tex_num
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.9), constrained_layout=True)
     if "plateau_r" in ds:
@@ -288,9 +288,9 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
         a1.plot(m, ds["plateau_before_after"].values, "s", mfc="none", ms=4, color="C3",
                 label=r"printed: $|\dot\Psi(t_{2m+1}^-)|/\dot\Psi(t_{2m+2}^+)$")
         a1.set(ylim=(lo, hi), xlim=(0, max(fr.size, 1)), xlabel="macroscopic bounce $m$",
-               ylabel="restitution coefficient (ratio of speeds or flights)")
-        a1.set_title(r"(a) %s: $\gamma=%g$, $\mu=%g$" % (ds.attrs["rest_scene"], ds.attrs["rest_gamma"],
-                                                          ds.attrs["rest_mu"]), fontsize=8)
+               ylabel="restitution coefficient")
+        a1.set_title(r"(a) %s: $\gamma=%s$, $\mu=%s$" % (ds.attrs["rest_scene"], tex_num(ds.attrs["rest_gamma"]),
+                                                          tex_num(ds.attrs["rest_mu"])), fontsize=8)
         a1.legend(fontsize=5.5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1, frameon=False)
         c = ds["contact_ratio"].values
         mc = np.arange(1, c.size + 1)

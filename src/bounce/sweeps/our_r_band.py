@@ -157,19 +157,22 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     mesh = a1.pcolormesh(ds["u_bin_edges"].values, log_edges(mu), z, shading="flat", cmap="viridis", norm=norm)
     fig.colorbar(mesh, ax=a1, shrink=0.9, label="median error of 1 - r")
     edges = ds["u_bin_edges"].values
+    # the edges the error models predict (bounce.analysis.restitution.band_edges), clipped to the grid: a bar per mu
+    # over each predicted range, a tick at u1's value at the threshold
+    clip = lambda v: np.clip(v / uc, edges[0], edges[-1])  # noqa: E731
+    for lo, hi in (("u1_predicted_low", "u1_predicted_high"), ("u2_predicted_low", "u2_predicted_high")):
+        a1.hlines(mu, clip(ds[lo].values), clip(ds[hi].values), color="C3", lw=2.5, zorder=1.5)
+    found = np.isfinite(ds["u1_predicted"].values)  # inf: no bounce with the spring term above the threshold
+    a1.plot(clip(ds["u1_predicted"].values[found]), mu[found], "|", color="C3", ms=9, mew=2, label="predicted edges")
     # band edges; hollow where the edge is the run's own end (or start) or beyond the grid (drawn at its end)
     for edge, marker, bound in (("u1", "<", "u_min"), ("u2", ">", "u_max")):
         x = ds[edge].values / uc
         open_ = (ds[edge].values == ds[bound].values) | (x < edges[0]) | (x > edges[-1])
         x = np.clip(x, edges[0], edges[-1])
-        a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4, label="band edges u1, u2" if edge == "u1" else None)
-        a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w",
+        a1.plot(x[~open_], mu[~open_], "w" + marker, mec="k", mew=0.5, ms=5,
+                label="band edges u1, u2" if edge == "u1" else None)
+        a1.plot(x[open_], mu[open_], marker, ms=5, mfc="none", mec="C1",
                 label="edge at the run's end or off the grid" if edge == "u1" and open_.any() else None)
-    # the edges the error models predict (bounce.analysis.restitution.band_edges), a bar per mu, clipped to the grid
-    for lo, hi, label in (("u1_predicted_low", "u1_predicted_high", "predicted edges"),
-                          ("u2_predicted_low", "u2_predicted_high", None)):
-        a1.hlines(mu, np.clip(ds[lo].values / uc, edges[0], edges[-1]), np.clip(ds[hi].values / uc, edges[0], edges[-1]),
-                  color="C3", lw=2.5, zorder=1.5, label=label)
     a1.axvline(1.0, color="w", lw=0.6, ls="--")
     a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
     a1.set_title(f"eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
