@@ -1,4 +1,4 @@
-"""Check ``overdamped``: figs. very_rigid_poincareon_scenes(_magni) and sec. 8.1's over-damped ball (mu = 2).
+"""Check ``overdamped``: figs. very_rigid_poincare_overdamped(_magni) and sec. 8.1's over-damped ball (mu = 2).
 
 Indexing: impact n (paper, t_0 = 0 the release) is bounce's event n - 1, tau_n = traj.tau[n], Xdot_n = traj.xdot[n - 1];
 just before impact n the centre of mass moves at psi'(t_n^-) = xi'(t_n^+) = xidot[n-1] (eq. collision-rule).
@@ -107,7 +107,7 @@ def overdamped_monotone_approach(m, spec) -> dict:
     o, few = m.od, int(spec["few_impacts"])
     return {m.od_name: Verdict(
         "The over-damped spring shrinks for the first few impacts, then expands, approaching its equilibrium "
-        "length monotonically from below", "figs. very_rigid_poincareon_scenes(_magni), sec. 8.1",
+        "length monotonically from below", "figs. very_rigid_poincare_overdamped(_magni), sec. 8.1",
         f"{m.od_ctx}: y - y_eq (= spring length - its equilibrium, x = 0) at the impacts: n0 = first impact from "
         "which it is < 0 and increasing at every later impact; impact of the minimum; sign changes",
         f"n0 and the minimum within the first few ({few}) impacts, then no sign change of y - y_eq or of its "
