@@ -1,7 +1,7 @@
 """Claim group our-r: the erratum row our-r-centre-of-mass (eq. our-r's small-u branch read in the rigid ball's own
 speed) flips for the corrected coefficient, 1 - 2 mu u/(3 gamma); our-r-band is refuted by a wrong large-u branch
 (its band against the predicted edges); the one policy that decides a drop's band (band_structure), on the scene and
-on every mu of the sweep (same-structure-across-mu)."""
+on every mu of the sweep (band-across-mu)."""
 
 from __future__ import annotations
 
@@ -95,11 +95,11 @@ def _sweep(**changes) -> xr.Dataset:
 
 def _across(ds):
     sp = _spec()
-    (v,) = our_r.same_structure_across_mu(our_r.measure(sp, [ds]), sp).values()
+    (v,) = our_r.band_across_mu(our_r.measure(sp, [ds]), sp).values()
     return v
 
 
-def test_same_structure_across_mu_is_judged_for_every_mu():
+def test_band_across_mu_is_judged_for_every_mu():
     """judge_every: every decided mu holds -> reproduced; one decided mu fails -> not reproduced; one mu whose drop
     does not reach past the predicted upper edge (the slightest damping: u2 = gamma (ln 20 + 1)/(2 mu) above the
     drop's first landing) -> not checkable, however its band looks."""
