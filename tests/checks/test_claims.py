@@ -191,7 +191,7 @@ def inputs_for(name: str) -> list:
     s = scenes()
     declared = {"main-theorem": [s["ud"], s["od"], sweep("asymptotic-atlas")],
                 "static-equilibrium": [s["ud"], s["od"], s["rest"]],
-                "restitution": [s["rest"]], "overdamped": [s["odfull"]], "our-r": [s["rest"], sweep("our-r-band")],
+                "restitution": [s["rest"], sweep("our-r-band")], "overdamped": [s["odfull"]], "our-r": [s["rest"], sweep("our-r-band")],
                 "rigid-collapse": [s["ud"]],
                 "sticky-convergence": _real_sticky_inputs(), "paper-figures": [s["fall"], s["rest"]],
                 "nonlinear": [s[k] for k in NONLIN], "nonlinear-records": [s[k] for k in NONLIN],

@@ -1,7 +1,8 @@
 """The dimer's restitution measured on an unthinned scene dataset, shared by the claim groups
 ``restitution``, ``overdamped`` and ``our-r`` (:mod:`bounce.checks`) and the sweep ``our-r-band``
 (:mod:`bounce.sweeps.our_r_band`): the double-impact regime of fig. rest-coeff (r_m = f_{m+1}/f_m,
-f_m = tau_{2m}, eq. ``Falcon-rest-coeff``), the per-bounce restitution against eq. ``our-r`` and the band where
+f_m = tau_{2m}, eq. ``Falcon-rest-coeff``) with its plateau's statistic and its later phases (:func:`plateau_statistic`,
+:func:`falcon_phases`), the per-bounce restitution against eq. ``our-r`` and the band where
 it fails, with its edges predicted by the two branches' error models (:func:`band_test`).
 
 The error models (thr = ``our_r_threshold``; the band is where |(1 - r)/(1 - r_our) - 1| > thr):
@@ -62,6 +63,36 @@ def double_impact(ds, cfg) -> dict:
     return {"gamma": gamma, "mu": mu, "r0": r0, "Txi": Txi, "m": mp, "f": f, "r": r, "after": after,
             "before_after": before_after, "contact_ratio": cr, "delta": delta, "V": V[: P + 1],
             "run_len": run_len, "plateau": P, "r_all": f[1:] / f[:-1]}
+
+#: the bounces of fig. rest-coeff's phases: r_m, m <= this, is read (the figure's drop leaves the double-impact run at
+#: m ~ 57 and fluctuates over the rest)
+FALCON_BOUNCES = 200
+
+
+def plateau_statistic(dbl) -> dict:
+    """The plateau of r_m = f_(m+1)/f_m (eq. Falcon-rest-coeff) of :func:`double_impact`: its length, mean, spread
+    (ddof 1), the mean's standard error and the first-order gravity correction r mu T_xi max(delta_m) (eq.
+    rest-coefficient-function-of-mu is the gamma -> 0 limit); NaN statistics below 3 bounces."""
+    r, n = dbl["r"], int(dbl["plateau"])
+    if n < 3:
+        return {"bounces": n, "mean": math.nan, "std": math.nan, "standard_error": math.nan, "correction": math.nan}
+    std = float(np.std(r, ddof=1))
+    return {"bounces": n, "mean": float(np.mean(r)), "std": std, "standard_error": std / math.sqrt(n),
+            "correction": dbl["r0"] * dbl["mu"] * dbl["Txi"] * float(np.max(dbl["delta"]))}
+
+
+def falcon_phases(dbl, plateau_mean: float) -> dict:
+    """Fig. rest-coeff's phases after the plateau (sec. 8.1: 'then r declines, and finally it begins to fluctuate
+    without a clear pattern'): ``drop``, the plateau's mean minus the mean of r_m over the rest of the double-impact
+    run (m = P+1..R-1; NaN if empty); over the bounces after it (m = R+1..:data:`FALCON_BOUNCES`) the fraction of the
+    steps at which r_m turns (the sign of r_(m+1) - r_m changing) and the spread of r_m (NaN for fewer than 4)."""
+    r, P, R = dbl["r_all"], int(dbl["plateau"]), int(dbl["run_len"])
+    decline, after = r[P:R - 1], r[R:FALCON_BOUNCES]
+    enough = after.size > 3
+    return {"drop": plateau_mean - float(np.mean(decline)) if decline.size else math.nan,
+            "turns": float(np.mean(np.diff(np.sign(np.diff(after))) != 0)) if enough else math.nan,
+            "spread": float(np.std(after)) if enough else math.nan, "after": after}
+
 
 def our_r_test(ds, dbl, cfg) -> dict:
     gamma, mu = dbl["gamma"], dbl["mu"]

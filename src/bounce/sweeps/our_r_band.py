@@ -6,7 +6,7 @@ u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The c
 ``our-r-band``) finds, on one drop (gamma = 1e-5, mu = 0.01), that the law is right on both sides
 and wrong in a band [u1, u2] around u_c, whose edges the two branches' error models predict.  This sweep
 maps that band over a log grid of mu (under-damped, mu < 1; one item per mu; the check's claim
-``same-structure-across-mu`` judges it): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
+``band-across-mu`` judges it): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and r is measured per macroscopic bounce exactly as the
 check does (:func:`bounce.analysis.restitution.double_impact` and
 :func:`~bounce.analysis.restitution.band_test`, imported, not re-coded): r = ratio of successive
@@ -14,7 +14,9 @@ landing speeds u = Xdot of the lower mass, over the initial run of double impact
 every impact.  It is judged on the dissipated fraction, err = (1 - r)/(1 - r_our) - 1 (where
 1 - r ~ 1e-4, a relative error of r itself says nothing).  Per mu also the band's predicted edges (u1 from the
 small-u model's spring term |ydot_n|/(4 mu gamma), u2 = gamma (ln(1/thr) -+ 1)/(2 mu)) and the bounces beyond
-the measured band on each side.
+the measured band on each side, and fig. rest-coeff's phases as check ``restitution`` measures them
+(:func:`~bounce.analysis.restitution.plateau_statistic`, :func:`~bounce.analysis.restitution.falcon_phases`: the
+plateau's mean r against exp(-mu T_xi), the decline, the fluctuation; its claim ``same-behaviour-across-mu``).
 
 Per mu the bounces are binned on a log grid of u/u_c (``u_over_uc``): in each (mu, u/u_c) cell the
 number of bounces, the median and largest |err| and the fraction with |err| > ``our_r_threshold``;
@@ -30,16 +32,21 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..analysis.restitution import band_test, double_impact
+from ..analysis.restitution import FALCON_BOUNCES, band_test, double_impact, falcon_phases, plateau_statistic
+from ..analysis.theory import u_c
 from ..io import to_dataset
 from ..model import Parameters, State
 from ..simulate import simulate
-from ..analysis.theory import u_c
 from .base import ITEM, Sweep, axis, log_edges
 
 NAME = "our-r-band"
 #: the band's predicted edges per mu (bounce.analysis.restitution.band_edges)
 PREDICTED = ("u1_predicted_low", "u1_predicted", "u1_predicted_high", "u2_predicted_low", "u2_predicted_high")
+#: fig. rest-coeff's phases per mu: the plateau's statistic and the later phases (bounce.analysis.restitution:
+#: plateau_statistic, falcon_phases), by their keys there
+PLATEAU = {"mean": "plateau_mean", "std": "plateau_std", "standard_error": "plateau_standard_error",
+           "correction": "plateau_gravity_correction"}
+PHASES = {"drop": "decline_drop", "turns": "fluctuation_turns", "spread": "fluctuation_spread"}
 
 
 def size(spec: dict) -> int:
@@ -52,15 +59,20 @@ def prepare(spec: dict, items: np.ndarray) -> dict:
 
 def bounce_errors(spec: dict, mu: float) -> dict:
     """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band with its
-    predicted edges and the bounces beyond it."""
+    predicted edges and the bounces beyond it; fig. rest-coeff's plateau and later phases (check restitution's)."""
     gamma = float(spec["gamma"])
     start = State.from_psi_xi(float(spec["psi0"]), 0.0, 0.0, 0.0)
     ds = to_dataset(simulate(Parameters(gamma, mu), start, max_events=int(spec["events"])))
-    measured = band_test(ds, double_impact(ds, spec), spec)
+    dbl = double_impact(ds, spec)
+    measured = band_test(ds, dbl, spec)
+    plateau = plateau_statistic(dbl)
+    phases = falcon_phases(dbl, plateau["mean"])
     return {"u": measured["u"], "err": measured["err"], "u_c": u_c(gamma, mu),
             "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1)),
             **dict(zip(PREDICTED, measured["small"] + measured["large"])),
-            "bounces_below_band": measured["below"], "bounces_above_band": measured["above"]}
+            "bounces_below_band": measured["below"], "bounces_above_band": measured["above"],
+            "r_theory": dbl["r0"], "plateau_bounces": plateau["bounces"],
+            **{v: plateau[k] for k, v in PLATEAU.items()}, **{v: phases[k] for k, v in PHASES.items()}}
 
 
 def compute(spec: dict, inputs: dict) -> dict:
@@ -69,9 +81,9 @@ def compute(spec: dict, inputs: dict) -> dict:
     m = len(inputs["mu"])
     out = {k: np.full((m, n_bins), np.nan) for k in ("median_err", "max_err", "fraction_failing")}
     out["bounces"] = np.zeros((m, n_bins), dtype=np.int64)
-    for k in ("u_c", "u1", "u2", "u_min", "u_max") + PREDICTED:
+    for k in ("u_c", "u1", "u2", "u_min", "u_max", "r_theory") + PREDICTED + tuple(PLATEAU.values()) + tuple(PHASES.values()):
         out[k] = np.full(m, np.nan)
-    for k in ("double_bounces", "bounces_below_band", "bounces_above_band"):
+    for k in ("double_bounces", "bounces_below_band", "bounces_above_band", "plateau_bounces"):
         out[k] = np.zeros(m, dtype=np.int64)
     thr = float(spec["our_r_threshold"])
     for i, mu in enumerate(inputs["mu"]):
@@ -79,7 +91,8 @@ def compute(spec: dict, inputs: dict) -> dict:
         ok = np.isfinite(b["err"])
         u, err = b["u"][ok], np.abs(b["err"][ok])
         out["u_c"][i], out["u1"][i], out["u2"][i], out["double_bounces"][i] = b["u_c"], b["u1"], b["u2"], b["double"]
-        for k in PREDICTED + ("bounces_below_band", "bounces_above_band"):
+        for k in PREDICTED + ("bounces_below_band", "bounces_above_band", "r_theory", "plateau_bounces") + \
+                tuple(PLATEAU.values()) + tuple(PHASES.values()):
             out[k][i] = b[k]
         if u.size:
             out["u_min"][i], out["u_max"][i] = u.min(), u.max()
@@ -122,6 +135,20 @@ VARIABLES = {
     "u2_predicted_high": ((ITEM,), "predicted u2, high end: gamma (ln(1/thr) + 1)/(2 mu)", "sqrt(2k/m) L", None),
     "bounces_below_band": ((ITEM,), "macroscopic bounces slower than u1", "1", "0: no failing bounce"),
     "bounces_above_band": ((ITEM,), "macroscopic bounces faster than u2", "1", "0: no failing bounce"),
+    "r_theory": ((ITEM,), "restitution exp(-mu T_xi) of eq. rest-coefficient-function-of-mu", "1", None),
+    "plateau_bounces": ((ITEM,), "bounces of the plateau of r_m = f_(m+1)/f_m (flights f_m >= plateau_flight T_d, "
+                        "within the double-impact run)", "1", "check restitution decides a mu from 3 on"),
+    "plateau_mean": ((ITEM,), "mean r_m over the plateau", "1", "NaN: fewer than 3 plateau bounces"),
+    "plateau_std": ((ITEM,), "standard deviation (ddof 1) of r_m over the plateau", "1", None),
+    "plateau_standard_error": ((ITEM,), "standard error of the plateau's mean r_m", "1", None),
+    "plateau_gravity_correction": ((ITEM,), "first-order gravity correction r mu T_xi max(delta_m) of the plateau's r",
+                                   "1", "delta_m: the contact's shortening by gravity (check restitution)"),
+    "decline_drop": ((ITEM,), "plateau's mean r_m minus the mean r_m over the rest of the double-impact run", "1",
+                     "NaN: the run ends at the plateau's end"),
+    "fluctuation_turns": ((ITEM,), "fraction of the steps at which r_m turns, over the bounces after the double-impact "
+                          f"run up to m = {FALCON_BOUNCES}", "1", "2/3 for an unordered sequence, 0 for a trend"),
+    "fluctuation_spread": ((ITEM,), "standard deviation of r_m over the bounces after the double-impact run up to "
+                           f"m = {FALCON_BOUNCES}", "1", None),
 }
 
 
@@ -135,7 +162,8 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     ds["u_bin_edges"] = xr.Variable(("u_bin_edge",), log_edges(centres),
                                     {"long_name": "edges of the u/u_c bins (geometric midpoints)", "units": "1"})
     ds.attrs.update(gamma=float(spec["gamma"]), psi0=float(spec["psi0"]), events=int(spec["events"]),
-                    our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]))
+                    our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]),
+                    plateau_flight=float(spec["plateau_flight"]))
     return ds
 
 
