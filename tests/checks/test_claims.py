@@ -77,6 +77,8 @@ OVERRIDES = {
     "main-theorem": {"fit": {"n_min": 1000}, "plot_points": 100},
     "static-equilibrium": {"asymptotic_min_events": 20000, "limit_bracket": 0.01},
     "restitution": {},
+    "overdamped": {},
+    "our-r": {},
     "rigid-collapse": {"onefifth_bounces": 30000, "our_r_bounces": 30000, "tail_window": [1000, 5000]},
     "contact-non-generic": {"seed": 2, "n_constructed": 3, "tail_fit": [2, 20], "alpha_over_gamma": [0.1, 10.0],
                             "scan_n": 5},
@@ -165,6 +167,8 @@ SWEEPS = {
     "column-drop": {"shards": 1, "r": [0.9], "n": [1, 2, 4], "samples": 1},
     "rigid-suffices": {"shards": 1, "r": [0.5, 0.95], "n": [10, 30, 90], "samples": 6, "horizon": 100.0,
                        "time": {"min": 0.1, "points": 12}},
+    "our-r-band": {"shards": 1, "mu": {"min": 0.02, "max": 0.05, "n": 2}, "u_over_uc": {"min": 1e-3, "max": 30.0, "n": 12},
+                   "gamma": 1e-5, "psi0": 0.25, "events": 20000},
 }
 
 
@@ -188,7 +192,8 @@ def inputs_for(name: str) -> list:
     s = scenes()
     declared = {"main-theorem": [s["ud"], s["od"], sweep("asymptotic-atlas")],
                 "static-equilibrium": [s["ud"], s["od"], s["rest"]],
-                "restitution": [s["rest"], s["odfull"]], "rigid-collapse": [s["ud"]],
+                "restitution": [s["rest"], sweep("our-r-band")], "overdamped": [s["odfull"]], "our-r": [s["rest"], sweep("our-r-band")],
+                "rigid-collapse": [s["ud"]],
                 "sticky-convergence": _real_sticky_inputs(), "paper-figures": [s["fall"], s["rest"]],
                 "nonlinear": [s[k] for k in NONLIN], "nonlinear-records": [s[k] for k in NONLIN],
                 "contact-non-generic": [sweep("contact-monte-carlo")],
@@ -474,10 +479,10 @@ def test_equilibrium_flips_on_wrong_rates():
     assert row(good, "static-equilibrium/printed-energy-limit[ud]").verdict == NOT_REPRODUCED  # stays an erratum
 
 
-# --------------------------------------------------------------------------- restitution
+# --------------------------------------------------------------------------- restitution, overdamped, our-r
 
-def _restitution(inputs):
-    return registry()["restitution"].run(spec("restitution"), inputs)
+def _run(group, inputs):
+    return registry()[group].run(spec(group), inputs)
 
 
 def test_restitution_flips_on_wrong_plateau():
@@ -486,23 +491,23 @@ def test_restitution_flips_on_wrong_plateau():
     m = np.arange(1, 200)
     tau[2 * m] *= 0.99**m  # r_m 1 % low over the double-impact regime
     bad["tau"] = ("event", tau, bad["tau"].attrs)
-    assert row(_restitution([bad]), "restitution/r-plateau[rest]").verdict == NOT_REPRODUCED
-    assert row(_restitution([scenes()["rest"]]), "restitution/r-plateau[rest]").verdict == REPRODUCED
+    assert row(_run("restitution", [bad]), "restitution/r-plateau[rest]").verdict == NOT_REPRODUCED
+    assert row(_run("restitution", [scenes()["rest"]]), "restitution/r-plateau[rest]").verdict == REPRODUCED
 
 
-def test_restitution_flips_on_wrong_small_u_law():
+def test_our_r_flips_on_wrong_small_u_law():
     bad = scenes()["rest"].copy(deep=True)
     bad["xdot"] = bad["xdot"] / 1.05  # speeds 5 % low for their restitution: 1 - r = 1.05 mu u/(3 gamma)
-    assert row(_restitution([bad]), "restitution/our-r-small-u[rest]").verdict == NOT_REPRODUCED
-    assert row(_restitution([scenes()["rest"]]), "restitution/our-r-small-u[rest]").verdict == REPRODUCED
+    assert row(_run("our-r", [bad]), "our-r/our-r-small-u[rest]").verdict == NOT_REPRODUCED
+    assert row(_run("our-r", [scenes()["rest"]]), "our-r/our-r-small-u[rest]").verdict == REPRODUCED
 
 
-def test_restitution_flips_on_overdamped_from_above():
+def test_overdamped_flips_on_approach_from_above():
     bad = scenes()["odfull"].copy(deep=True)
     bad["y_minus_yeq"] = -bad["y_minus_yeq"]
-    cid = "restitution/overdamped-monotone-approach[odfull]"
-    assert row(_restitution([bad]), cid).verdict == NOT_REPRODUCED
-    assert row(_restitution([scenes()["odfull"]]), cid).verdict == REPRODUCED
+    cid = "overdamped/overdamped-monotone-approach[odfull]"
+    assert row(_run("overdamped", [bad]), cid).verdict == NOT_REPRODUCED
+    assert row(_run("overdamped", [scenes()["odfull"]]), cid).verdict == REPRODUCED
 
 
 # --------------------------------------------------------------------------- rigid-collapse
@@ -740,11 +745,11 @@ def test_nonlinear_flight_law_flips_on_the_half_gamma_law():
 
 def test_overdamped_immediately_holds_loosely_not_strictly():
     """Sec. 8.1's 'immediately': n tau_n mu/3 within 10 % after <= 20 impacts, but not within 1 % (issue 10)."""
-    g = registry()["restitution"]
-    rows = g.verdicts(measured("restitution"), spec("restitution"))
-    assert row(rows, "restitution/overdamped-no-transient[odfull]").verdict == REPRODUCED
-    strict = row(rows, "restitution/overdamped-asymptotic-1pc[odfull]")
+    rows = registry()["overdamped"].verdicts(measured("overdamped"), spec("overdamped"))
+    assert row(rows, "overdamped/overdamped-no-transient[odfull]").verdict == REPRODUCED
+    strict = row(rows, "overdamped/overdamped-asymptotic-1pc[odfull]")
     assert strict.verdict == NOT_REPRODUCED and strict.measured.startswith("tau: ")
+    rows = registry()["restitution"].verdicts(measured("restitution"), spec("restitution"))
     assert row(rows, "restitution/falcon-comparison[rest]").verdict == REPRODUCED  # the simulated side of the comparison
 
 

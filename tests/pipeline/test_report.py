@@ -81,7 +81,7 @@ def test_errata_are_counted_once_by_the_register():
 
     factor2 = [(f"nonlinear/printed-dissipation-rate[{s}]", ERRATUM, NOT_REPRODUCED) for s in "abcd"]
     rows = _rows(*factor2, ("errata/xi-lemma-typos", ERRATUM, NOT_REPRODUCED),
-                 ("restitution/our-r-centre-of-mass[rest]", ERRATUM, NOT_CHECKABLE),
+                 ("our-r/our-r-centre-of-mass[rest]", ERRATUM, NOT_CHECKABLE),
                  ("g/p1", PAPER, REPRODUCED), ("g/p2", PAPER, REPRODUCED))
     reports = [CheckReport("g", "G", "fig-g.png", rows, {})]
     check_errata(reports)

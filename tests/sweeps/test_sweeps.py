@@ -120,7 +120,7 @@ def test_atlas_reproduces_the_main_theorem_limits():
 
 
 def test_our_r_band_is_a_band_around_u_c():
-    """Eq. our-r (check restitution, claim our-r-band): 1 - r = 1 - e^{-mu T_xi} holds for the macroscopic bounces
+    """Eq. our-r (check our-r, claim our-r-band): 1 - r = 1 - e^{-mu T_xi} holds for the macroscopic bounces
     well above u_c (sec. 8; within the threshold, here u/u_c ~ 30, the drop's first landings at mu = 0.01) and fails
     at the stitch u = u_c, where the dimer's 1 - r is neither branch's.  The band's upper edge lies between them."""
     ds = _gathered("our-r-band", BAND, shards=1, workers=1)
@@ -132,6 +132,20 @@ def test_our_r_band_is_a_band_around_u_c():
     assert 1.0 < float(low_mu["u2"] / low_mu["u_c"]) < 30.0
     # every measured bounce is in some cell or outside the grid, none twice
     assert np.all(ds["bounces"].values.sum(axis=1) > 0) and np.all(ds["double_bounces"].values > 0)
+    # the predicted edges per mu (check our-r's band-across-mu): u2 from gamma (ln(1/thr) -+ 1)/(2 mu), u1's
+    # range ordered; the bounces beyond the band counted on each side
+    ell, g, mu = np.log(1.0 / thr), ds.attrs["gamma"], ds["mu"].values
+    np.testing.assert_allclose(ds["u2_predicted_low"].values, g * (ell - 1.0) / (2.0 * mu), rtol=1e-12)
+    np.testing.assert_allclose(ds["u2_predicted_high"].values, g * (ell + 1.0) / (2.0 * mu), rtol=1e-12)
+    lo, at, hi = (ds[f"u1_predicted{k}"].values for k in ("_low", "", "_high"))
+    assert np.all(lo <= at) and np.all(at <= hi)
+    assert np.all(ds["bounces_above_band"].values > 0) and np.all(ds["bounces_below_band"].values >= 0)
+    # fig. rest-coeff's phases per mu (check restitution's same-behaviour-across-mu): at mu = 0.01 the scene
+    # rest-coeff's drop (its first 5000 events hold the plateau of 25 bounces and r = exp(-mu T_xi) to ~2e-4)
+    np.testing.assert_allclose(ds["r_theory"].values, np.exp(-mu * np.pi / np.sqrt(1.0 - mu**2)), rtol=1e-14)
+    assert int(low_mu["plateau_bounces"]) == 25 and abs(float(low_mu["plateau_mean"] - low_mu["r_theory"])) < 5e-4
+    assert np.all(ds["plateau_standard_error"].values < ds["plateau_std"].values)
+    assert 0.0 <= float(low_mu["fluctuation_turns"]) <= 1.0 and float(low_mu["decline_drop"]) > 0.0
 
 
 def test_hertz_single_impact_follows_the_first_order_cycle_loss_without_gravity():

@@ -113,7 +113,7 @@ REGISTER: tuple[Erratum, ...] = (
             r"1-\frac{2\mu}{3\gamma}u, & u\le u_{c} with u_{c}=\frac{3\gamma}{2\mu}(1-e^{-\mu T_{\xi}}) (u the "
             r"centre-of-mass speed, as in the large-u branch); or say that u is the lower mass's speed, flight u/\gamma",
             FORMULA, "the small-u branch is eq. restituzione, a map of the lower mass's speed Xdot_n = 2u; in the "
-            "centre-of-mass speed of the large-u branch the measured coefficient is 2", ("restitution/our-r-centre-of-mass",)),
+            "centre-of-mass speed of the large-u branch the measured coefficient is 2", ("our-r/our-r-centre-of-mass",)),
     Erratum("tau-simeq-xdot", NOCOLLAPSE, "eq:tauOXdot", 705, r"$\tau_{n}\simeq\dot{X}_{n}$",
             r"$\tau_{n}\simeq2\dot{X}_{n}/|\ddot{X}_{\infty}|$ (or $\tau_{n}\asymp\dot{X}_{n}$: only the order is used)",
             FORMULA, "the display just above gives tau_n ~ 2 Xdot_n/|Xddot_inf|; the two are only of the same order"),

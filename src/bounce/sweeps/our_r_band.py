@@ -2,16 +2,21 @@
 
 Eq. ``our-r`` (:func:`bounce.analysis.theory.our_r`) stitches r = e^{-mu T_xi} (large impact speeds u, the
 macroscopic bounce of sec. 8) to r = 1 - mu u/(3 gamma) (small u, eq. ``restituzione``) at
-u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The check ``restitution`` (claim
+u_c = 3 gamma/mu (1 - e^{-mu T_xi}) (:func:`bounce.analysis.theory.u_c`).  The check ``our-r`` (claim
 ``our-r-band``) finds, on one drop (gamma = 1e-5, mu = 0.01), that the law is right on both sides
-and wrong in a band [u1, u2] around u_c.  This sweep maps that band over a log grid of mu
-(under-damped, mu < 1; one item per mu): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
+and wrong in a band [u1, u2] around u_c, whose edges the two branches' error models predict.  This sweep
+maps that band over a log grid of mu (under-damped, mu < 1; one item per mu; the check's claim
+``band-across-mu`` judges it): for each mu the drop from psi(0) = ``psi0`` (xi = 0, at
 rest) is simulated for ``events`` events and r is measured per macroscopic bounce exactly as the
 check does (:func:`bounce.analysis.restitution.double_impact` and
-:func:`~bounce.analysis.restitution.our_r_test`, imported, not re-coded): r = ratio of successive
+:func:`~bounce.analysis.restitution.band_test`, imported, not re-coded): r = ratio of successive
 landing speeds u = Xdot of the lower mass, over the initial run of double impacts and then over
 every impact.  It is judged on the dissipated fraction, err = (1 - r)/(1 - r_our) - 1 (where
-1 - r ~ 1e-4, a relative error of r itself says nothing).
+1 - r ~ 1e-4, a relative error of r itself says nothing).  Per mu also the band's predicted edges (u1 from the
+small-u model's spring term |ydot_n|/(4 mu gamma), u2 = gamma (ln(1/thr) -+ 1)/(2 mu)) and the bounces beyond
+the measured band on each side, and fig. rest-coeff's phases as check ``restitution`` measures them
+(:func:`~bounce.analysis.restitution.plateau_statistic`, :func:`~bounce.analysis.restitution.falcon_phases`: the
+plateau's mean r against exp(-mu T_xi), the decline, the fluctuation; its claim ``same-behaviour-across-mu``).
 
 Per mu the bounces are binned on a log grid of u/u_c (``u_over_uc``): in each (mu, u/u_c) cell the
 number of bounces, the median and largest |err| and the fraction with |err| > ``our_r_threshold``;
@@ -27,14 +32,21 @@ import math
 import numpy as np
 import xarray as xr
 
-from ..analysis.restitution import double_impact, our_r_test
+from ..analysis.restitution import FALCON_BOUNCES, band_test, double_impact, falcon_phases, plateau_statistic
+from ..analysis.theory import u_c
 from ..io import to_dataset
 from ..model import Parameters, State
 from ..simulate import simulate
-from ..analysis.theory import u_c
 from .base import ITEM, Sweep, axis, log_edges
 
 NAME = "our-r-band"
+#: the band's predicted edges per mu (bounce.analysis.restitution.band_edges)
+PREDICTED = ("u1_predicted_low", "u1_predicted", "u1_predicted_high", "u2_predicted_low", "u2_predicted_high")
+#: fig. rest-coeff's phases per mu: the plateau's statistic and the later phases (bounce.analysis.restitution:
+#: plateau_statistic, falcon_phases), by their keys there
+PLATEAU = {"mean": "plateau_mean", "std": "plateau_std", "standard_error": "plateau_standard_error",
+           "correction": "plateau_gravity_correction"}
+PHASES = {"drop": "decline_drop", "turns": "fluctuation_turns", "spread": "fluctuation_spread"}
 
 
 def size(spec: dict) -> int:
@@ -46,13 +58,21 @@ def prepare(spec: dict, items: np.ndarray) -> dict:
 
 
 def bounce_errors(spec: dict, mu: float) -> dict:
-    """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band."""
+    """(u, err) of every macroscopic bounce of the drop at this mu (the check's measurement), u_c, the band with its
+    predicted edges and the bounces beyond it; fig. rest-coeff's plateau and later phases (check restitution's)."""
     gamma = float(spec["gamma"])
     start = State.from_psi_xi(float(spec["psi0"]), 0.0, 0.0, 0.0)
     ds = to_dataset(simulate(Parameters(gamma, mu), start, max_events=int(spec["events"])))
-    measured = our_r_test(ds, double_impact(ds, spec), spec)
+    dbl = double_impact(ds, spec)
+    measured = band_test(ds, dbl, spec)
+    plateau = plateau_statistic(dbl)
+    phases = falcon_phases(dbl, plateau["mean"])
     return {"u": measured["u"], "err": measured["err"], "u_c": u_c(gamma, mu),
-            "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1))}
+            "u1": measured["u1"], "u2": measured["u2"], "double": int(np.sum(measured["kind"] == 1)),
+            **dict(zip(PREDICTED, measured["small"] + measured["large"])),
+            "bounces_below_band": measured["below"], "bounces_above_band": measured["above"],
+            "r_theory": dbl["r0"], "plateau_bounces": plateau["bounces"],
+            **{v: plateau[k] for k, v in PLATEAU.items()}, **{v: phases[k] for k, v in PHASES.items()}}
 
 
 def compute(spec: dict, inputs: dict) -> dict:
@@ -61,15 +81,19 @@ def compute(spec: dict, inputs: dict) -> dict:
     m = len(inputs["mu"])
     out = {k: np.full((m, n_bins), np.nan) for k in ("median_err", "max_err", "fraction_failing")}
     out["bounces"] = np.zeros((m, n_bins), dtype=np.int64)
-    for k in ("u_c", "u1", "u2", "u_min", "u_max"):
+    for k in ("u_c", "u1", "u2", "u_min", "u_max", "r_theory") + PREDICTED + tuple(PLATEAU.values()) + tuple(PHASES.values()):
         out[k] = np.full(m, np.nan)
-    out["double_bounces"] = np.zeros(m, dtype=np.int64)
+    for k in ("double_bounces", "bounces_below_band", "bounces_above_band", "plateau_bounces"):
+        out[k] = np.zeros(m, dtype=np.int64)
     thr = float(spec["our_r_threshold"])
     for i, mu in enumerate(inputs["mu"]):
         b = bounce_errors(spec, float(mu))
         ok = np.isfinite(b["err"])
         u, err = b["u"][ok], np.abs(b["err"][ok])
         out["u_c"][i], out["u1"][i], out["u2"][i], out["double_bounces"][i] = b["u_c"], b["u1"], b["u2"], b["double"]
+        for k in PREDICTED + ("bounces_below_band", "bounces_above_band", "r_theory", "plateau_bounces") + \
+                tuple(PLATEAU.values()) + tuple(PHASES.values()):
+            out[k][i] = b[k]
         if u.size:
             out["u_min"][i], out["u_max"][i] = u.min(), u.max()
         cell = np.searchsorted(edges, u / b["u_c"], side="right") - 1
@@ -87,7 +111,7 @@ _C = (ITEM, "u_bin")
 VARIABLES = {
     "mu": ((ITEM,), "damping mu = nu / sqrt(2 k m)", "1", None),
     "median_err": (_C, "median over the cell's bounces of |(1 - r)/(1 - r_our) - 1|", "1",
-                   "r: ratio of successive landing speeds (check restitution); r_our: eq. our-r; NaN: no bounce"),
+                   "r: ratio of successive landing speeds (check our-r); r_our: eq. our-r; NaN: no bounce"),
     "max_err": (_C, "largest |(1 - r)/(1 - r_our) - 1| over the cell's bounces", "1", None),
     "fraction_failing": (_C, "fraction of the cell's bounces with |(1 - r)/(1 - r_our) - 1| > our_r_threshold",
                          "1", None),
@@ -100,6 +124,31 @@ VARIABLES = {
     "u_min": ((ITEM,), "smallest landing speed measured", "sqrt(2k/m) L", None),
     "u_max": ((ITEM,), "largest landing speed measured", "sqrt(2k/m) L", None),
     "double_bounces": ((ITEM,), "bounces of the initial double-impact run", "1", None),
+    "u1_predicted_low": ((ITEM,), "predicted u1, low end: first bounce from below with |ydot_n|/(4 mu gamma) > "
+                         "thr - thr^2", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u1_predicted": ((ITEM,), "predicted u1: first bounce from below with |ydot_n|/(4 mu gamma) > thr "
+                     "(the small-u branch's error model)", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u1_predicted_high": ((ITEM,), "predicted u1, high end: first bounce from below with |ydot_n|/(4 mu gamma) > "
+                          "thr + thr^2", "sqrt(2k/m) L", "inf: no such bounce"),
+    "u2_predicted_low": ((ITEM,), "predicted u2, low end: gamma (ln(1/thr) - 1)/(2 mu) (the large-u branch's "
+                         "error model)", "sqrt(2k/m) L", None),
+    "u2_predicted_high": ((ITEM,), "predicted u2, high end: gamma (ln(1/thr) + 1)/(2 mu)", "sqrt(2k/m) L", None),
+    "bounces_below_band": ((ITEM,), "macroscopic bounces slower than u1", "1", "0: no failing bounce"),
+    "bounces_above_band": ((ITEM,), "macroscopic bounces faster than u2", "1", "0: no failing bounce"),
+    "r_theory": ((ITEM,), "restitution exp(-mu T_xi) of eq. rest-coefficient-function-of-mu", "1", None),
+    "plateau_bounces": ((ITEM,), "bounces of the plateau of r_m = f_(m+1)/f_m (flights f_m >= plateau_flight T_d, "
+                        "within the double-impact run)", "1", "check restitution decides a mu from 3 on"),
+    "plateau_mean": ((ITEM,), "mean r_m over the plateau", "1", "NaN: fewer than 3 plateau bounces"),
+    "plateau_std": ((ITEM,), "standard deviation (ddof 1) of r_m over the plateau", "1", None),
+    "plateau_standard_error": ((ITEM,), "standard error of the plateau's mean r_m", "1", None),
+    "plateau_gravity_correction": ((ITEM,), "first-order gravity correction r mu T_xi max(delta_m) of the plateau's r",
+                                   "1", "delta_m: the contact's shortening by gravity (check restitution)"),
+    "decline_drop": ((ITEM,), "plateau's mean r_m minus the mean r_m over the rest of the double-impact run", "1",
+                     "NaN: the run ends at the plateau's end"),
+    "fluctuation_turns": ((ITEM,), "fraction of the steps at which r_m turns, over the bounces after the double-impact "
+                          f"run up to m = {FALCON_BOUNCES}", "1", "2/3 for an unordered sequence, 0 for a trend"),
+    "fluctuation_spread": ((ITEM,), "standard deviation of r_m over the bounces after the double-impact run up to "
+                           f"m = {FALCON_BOUNCES}", "1", None),
 }
 
 
@@ -113,7 +162,8 @@ def finish(ds: xr.Dataset, spec: dict) -> xr.Dataset:
     ds["u_bin_edges"] = xr.Variable(("u_bin_edge",), log_edges(centres),
                                     {"long_name": "edges of the u/u_c bins (geometric midpoints)", "units": "1"})
     ds.attrs.update(gamma=float(spec["gamma"]), psi0=float(spec["psi0"]), events=int(spec["events"]),
-                    our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]))
+                    our_r_threshold=float(spec["our_r_threshold"]), double_band=float(spec["double_band"]),
+                    plateau_flight=float(spec["plateau_flight"]))
     return ds
 
 
@@ -127,7 +177,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     mu, thr = ds["mu"].values, float(ds.attrs["our_r_threshold"])
     uc = ds["u_c"].values
     med = ds["median_err"].values
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 2.8), constrained_layout=True)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(WIDTH, 3.6), constrained_layout=True)
     finite = med[np.isfinite(med) & (med > 0)]
     norm = LogNorm(vmin=max(finite.min(), 1e-6), vmax=max(finite.max(), 1.0)) if finite.size else None
     a1.set_facecolor("0.85")  # grey: no bounce at that speed
@@ -135,17 +185,26 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     mesh = a1.pcolormesh(ds["u_bin_edges"].values, log_edges(mu), z, shading="flat", cmap="viridis", norm=norm)
     fig.colorbar(mesh, ax=a1, shrink=0.9, label="median error of 1 - r")
     edges = ds["u_bin_edges"].values
+    # the edges the error models predict (bounce.analysis.restitution.band_edges), clipped to the grid: a bar per mu
+    # over each predicted range, a tick at u1's value at the threshold
+    clip = lambda v: np.clip(v / uc, edges[0], edges[-1])  # noqa: E731
+    for lo, hi in (("u1_predicted_low", "u1_predicted_high"), ("u2_predicted_low", "u2_predicted_high")):
+        a1.hlines(mu, clip(ds[lo].values), clip(ds[hi].values), color="C3", lw=2.5, zorder=1.5)
+    found = np.isfinite(ds["u1_predicted"].values)  # inf: no bounce with the spring term above the threshold
+    a1.plot(clip(ds["u1_predicted"].values[found]), mu[found], "|", color="C3", ms=9, mew=2, label="predicted edges")
     # band edges; hollow where the edge is the run's own end (or start) or beyond the grid (drawn at its end)
     for edge, marker, bound in (("u1", "<", "u_min"), ("u2", ">", "u_max")):
         x = ds[edge].values / uc
         open_ = (ds[edge].values == ds[bound].values) | (x < edges[0]) | (x > edges[-1])
         x = np.clip(x, edges[0], edges[-1])
-        a1.plot(x[~open_], mu[~open_], "w" + marker, ms=4)
-        a1.plot(x[open_], mu[open_], marker, ms=4, mfc="none", mec="w")
+        a1.plot(x[~open_], mu[~open_], "w" + marker, mec="k", mew=0.5, ms=5,
+                label="band edges u1, u2" if edge == "u1" else None)
+        a1.plot(x[open_], mu[open_], marker, ms=5, mfc="none", mec="C1",
+                label="edge at the run's end or off the grid" if edge == "u1" and open_.any() else None)
     a1.axvline(1.0, color="w", lw=0.6, ls="--")
     a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
-    a1.set_title(f"(a) eq. our-r fails where the median error of 1 - r > {thr:g};\nwhite <, >: the band's edges u1, u2 "
-                 "(hollow: the run's end\nor off the grid); grey: no bounce at that speed", fontsize=6.5)
+    a1.set_title(f"(a) eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
+    a1.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
     centres = ds["u_bin"].values
     by_mu = plt.cm.ScalarMappable(LogNorm(mu.min(), mu.max()) if mu.min() < mu.max() else None, cmap="plasma")
     for i, m in enumerate(mu):
