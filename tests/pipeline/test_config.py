@@ -185,6 +185,9 @@ def test_gas_scene_is_refused_naming_it(path, value, words):
     ("report.sections.appendix.subjects", ["lem:nosuch"], r"unknown \['lem:nosuch'\]"),
     ("report.choices", [{"text": "t", "keys": ["checks.restitution.few"]}],
      r"report.choices\[0\].keys: 'checks.restitution.few' is not a key"),
+    ("sweeps.our-r-band.plateau_flight", 3.0, r"^these settings must be equal .*checks.restitution.plateau_flight = 2.0, "
+     r"checks.our-r.plateau_flight = 2.0, sweeps.our-r-band.plateau_flight = 3.0$"),
+    ("checks.our-r.our_r_threshold", 0.1, r"checks.our-r.our_r_threshold = 0.1, sweeps.our-r-band.our_r_threshold = 0.05"),
 ])
 def test_dangling_or_shadowing_reference(path, value, words):
     with pytest.raises(ConfigError, match=words):

@@ -222,6 +222,33 @@ def report_choices(config: dict) -> list[dict]:
     return out
 
 
+#: settings that several slices carry (each rule takes only its own slice) and that must agree: the sweep
+#: ``our-r-band`` measures per mu what the checks ``restitution`` and ``our-r`` measure on the one drop
+SHARED_SETTINGS = (
+    ("checks.restitution.plateau_flight", "checks.our-r.plateau_flight", "sweeps.our-r-band.plateau_flight"),
+    ("checks.restitution.double_band", "checks.our-r.double_band", "sweeps.our-r-band.double_band"),
+    ("checks.our-r.our_r_threshold", "sweeps.our-r-band.our_r_threshold"),
+)
+
+
+def _value_at(config: dict, dotted: str):
+    node = config
+    for part in dotted.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node
+
+
+def _check_shared(config: dict) -> None:
+    """The slices of :data:`SHARED_SETTINGS` agree (where the config has them)."""
+    for keys in SHARED_SETTINGS:
+        present = [(k, _value_at(config, k)) for k in keys if _value_at(config, k) is not None]
+        if len({v for _, v in present}) > 1:
+            raise ConfigError("these settings must be equal (one measurement, several slices): "
+                              + ", ".join(f"{k} = {v}" for k, v in present))
+
+
 def validated(config: dict, schema: dict | None = None) -> dict:
     """A deep copy of ``config`` with the schema's defaults filled in, or :class:`ConfigError`."""
     config = copy.deepcopy(dict(config))
@@ -231,5 +258,6 @@ def validated(config: dict, schema: dict | None = None) -> dict:
         raise ConfigError(_describe(error))
     _check_scenes(config)
     _check_references(config)
+    _check_shared(config)
     _check_report(config)
     return config
