@@ -20,7 +20,6 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.optimize import minimize
 
 from . import reference
 from ..kinds import IMPACT
@@ -158,6 +157,8 @@ def minimum_sticky_energy(gamma: float, mu: float, n_grid: int = 301):
     feasible grid point, with the simulator's energy function (:func:`bounce.exact.events.energy_excess`).
     Returns (E - E_m, Ydot, z, x'' at the minimiser, best grid value).
     """
+    from scipy.optimize import minimize  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     L = 4.0 * gamma  # |Ydot| <= 2 sqrt(dE) <= 4 gamma and |z| <= sqrt(8 dE) < 6 gamma for dE <= 4 gamma^2
     yd = np.linspace(-L, L, n_grid)
     z = np.linspace(-1.5 * L, 1.5 * L, n_grid)
