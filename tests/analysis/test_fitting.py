@@ -38,3 +38,22 @@ def test_correction_decay_recovers_the_exponent(p):
     est, err, L = correction_decay(n[s], _sequence(n[s], p=p, second=0.0))
     assert abs(est - p) < 1e-4 and abs(L - 1.0) < 1e-8
     assert abs(est - p) <= err < 0.5  # conservative: late windows of a fast correction hit the rounding floor
+
+
+def test_log_select_is_the_log_spaced_pick_of_the_samples_inside_the_window():
+    """log_select's bisection against its definition on sorted arrays with repeats, gaps and windows inside, across
+    and outside the samples: the samples in [lo, hi], and among them the first one at or after each of k log-spaced
+    values (the last one if none is)."""
+    rng = np.random.default_rng(3)
+    for trial in range(400):
+        n = np.cumsum(rng.integers(trial % 2, 5, int(rng.integers(0, 300)))).astype(float) + 1.0
+        top = n[-1] + 5.0 if n.size else 10.0
+        lo, hi = np.sort(rng.uniform(0.5, top, 2))
+        if trial % 5 == 0:
+            lo, hi = hi, lo  # an empty window
+        k = int(rng.integers(1, 100))
+        inside = np.nonzero((n >= lo) & (n <= hi))[0]
+        expected = inside[:0] if inside.size == 0 else inside[np.unique(
+            np.minimum(np.searchsorted(n[inside], np.geomspace(lo, hi, k)), inside.size - 1))]
+        got = log_select(n, lo, hi, k)
+        assert got.dtype == expected.dtype and np.array_equal(got, expected), trial

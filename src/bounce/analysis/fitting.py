@@ -18,7 +18,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from .theory import correction_exponent, sticky_modes
 
@@ -26,13 +25,16 @@ from .theory import correction_exponent, sticky_modes
 # --------------------------------------------------------------------------- selection
 
 def log_select(n: np.ndarray, lo: float, hi: float, k: int) -> np.ndarray:
-    """Indices of ~k samples of the sorted array n, log-spaced in [lo, hi]."""
-    idx = np.nonzero((n >= lo) & (n <= hi))[0]
-    if idx.size == 0:
-        return idx
+    """Indices of ~k samples of the sorted array n, log-spaced in [lo, hi] (found by bisection: the fits call this
+    many times on runs of 1e6 impacts)."""
+    if not lo <= hi:
+        return np.arange(0)
+    first, end = int(np.searchsorted(n, lo, side="left")), int(np.searchsorted(n, hi, side="right"))
+    if end <= first:
+        return np.arange(0)
     want = np.geomspace(lo, hi, k)
-    pos = np.clip(np.searchsorted(n[idx], want), 0, idx.size - 1)
-    return idx[np.unique(pos)]
+    pos = np.clip(np.searchsorted(n[first:end], want), 0, end - first - 1)
+    return first + np.unique(pos)
 
 
 def settle_index(q: np.ndarray, ref: float, threshold: float) -> int:
@@ -179,6 +181,8 @@ def fit_basis(n, t, q, mu, map_orders, slow_powers) -> LimitFit:
 
 def exponent_profile(n, t, q, mu) -> float:
     """Profile fit of p in L + n^-p (a ln n + b) + sticky-spring terms (the case p_th = 1), p in [0.5, 2]."""
+    from scipy.optimize import minimize_scalar  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     ln = np.log(n)
     spring = spring_columns(t, mu, 2)
 
@@ -298,6 +302,8 @@ def correction_decay(n: np.ndarray, q: np.ndarray, extra: np.ndarray | None = No
     aligned with n), e.g. the spring's relaxation (:func:`spring_columns`), fitted along.  Returns (p, its error, L): the error is
     the larger change of p when the window starts at its geometric middle or ends at the geometric middle of its
     upper half (a remainder of the next order moves p; a pure law does not)."""
+    from scipy.optimize import minimize_scalar  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     def profile(sel):
         nn, qq = n[sel], q[sel]
         more = [] if extra is None else list(np.asarray(extra)[sel].T)

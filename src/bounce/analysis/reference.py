@@ -330,8 +330,9 @@ def backward_contact(gamma, mu, a_pre, eta, v, T, n_check: int = 24) -> tuple[De
     dip between grid points, which the forward simulation would report).  Returns (start as mpf, T).
     """
     T = M(T)
+    through_contact = Flight(*(M(w) for w in (gamma, mu, 0, -M(v), a_pre, eta)))  # the free flight of free_flight
     for _ in range(30):
-        if all(free_flight(gamma, mu, 0, -M(v), a_pre, eta, -T * (k + 1) / n_check).x > 0 for k in range(n_check)):
+        if all(through_contact.x(-T * (k + 1) / n_check) > 0 for k in range(n_check)):
             return free_flight(gamma, mu, 0, -M(v), a_pre, eta, -T), T
         T /= 2
     raise ValueError("could not find a backward flight that stays above the floor")

@@ -19,7 +19,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from ..exact.oscillator import natural_frequency
 
@@ -137,6 +136,8 @@ def eps_star(gamma: float, mu: float) -> tuple[float, float]:
         return 0.0, 2.0 * math.pi * SQRT2
     if mu >= SQRT2:
         return math.inf, math.nan
+    from scipy.optimize import minimize_scalar  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     w = math.sqrt(0.5 - mu * mu / 4.0)
 
     def h(t):
@@ -160,6 +161,8 @@ def t_c(gamma: float, mu: float, ydot0: float = -0.1) -> float:
     2001-point grid of each of the first five lobes of S < 0 and polished by brentq to 4 ulps; nan if the
     phase never ends (mu >= sqrt 2, or alpha below :func:`eps_star`).
     """
+    from scipy.optimize import brentq  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     alpha = 4.0 * gamma * mu - ydot0
     if mu >= SQRT2:
         return math.nan
@@ -170,7 +173,7 @@ def t_c(gamma: float, mu: float, ydot0: float = -0.1) -> float:
     w = math.sqrt(0.5 - mu * mu / 4.0)
     for k in range(1, 6):
         t = np.linspace((2 * k - 1) * math.pi / w, 2 * k * math.pi / w, 2001)
-        f = np.array([F(x) for x in t])
+        f = sticky_floor_force(gamma, mu, alpha, t)  # the grid at once: the same values as F point by point
         idx = np.flatnonzero((f[:-1] < 0) & (f[1:] >= 0))
         if idx.size:
             i = int(idx[0])
@@ -230,6 +233,8 @@ def sticky_count_bound(gamma: float, mu: float, excess_1: float, D: float) -> fl
 def t_c_gamma_band(mu: float, lo: float, hi: float, g_range, ydot0: float = -0.1) -> tuple[float, float]:
     """gamma interval with lo <= t_c(gamma, mu) < hi (t_c increases with gamma), by brentq on :func:`t_c`;
     nan at an end whose level is outside t_c(g_range)."""
+    from scipy.optimize import brentq  # scipy.optimize takes ~0.3 s to import: loaded where it is used
+
     def g_at(level):
         a, b = g_range
         fa, fb = t_c(a, mu, ydot0) - level, t_c(b, mu, ydot0) - level

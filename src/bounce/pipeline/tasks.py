@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import resource
 import sys
 from pathlib import Path
 
@@ -179,6 +180,11 @@ def main(argv=None) -> int:
     parser.add_argument("--workers", type=int, default=1, help="worker processes (the job's cores)")
     args = parser.parse_args(argv)
     TASKS[args.task](args)
+    # the job's exact CPU, last line of its log: Snakemake's benchmark file samples it (every 30 s after ~15 s of
+    # wall time, keeping the last sample) and undercounts long jobs
+    own, workers = (resource.getrusage(who) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    print(f"cpu: {own.ru_utime + own.ru_stime:.2f} s in this process, {workers.ru_utime + workers.ru_stime:.2f} s in "
+          f"its worker processes", file=sys.stderr)
     return 0
 
 
