@@ -204,7 +204,7 @@ def plot(ds: xr.Dataset, spec: dict, outputs) -> None:
     a1.axvline(1.0, color="w", lw=0.6, ls="--")
     a1.set(xscale="log", yscale="log", xlabel=r"landing speed $u / u_c$", ylabel=r"$\mu$", xlim=(edges[0], edges[-1]))
     a1.set_title(f"(a) eq. our-r fails where the median error of 1 - r > {thr:g}", fontsize=7)
-    a1.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
+    fig.legend(*a1.get_legend_handles_labels(), loc="outside lower center", fontsize=6, ncol=3, frameon=False)
     centres = ds["u_bin"].values
     by_mu = plt.cm.ScalarMappable(LogNorm(mu.min(), mu.max()) if mu.min() < mu.max() else None, cmap="plasma")
     for i, m in enumerate(mu):
