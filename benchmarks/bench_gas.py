@@ -20,17 +20,33 @@ What is measured, per N (default 1e3 and 1e5):
   (t_c = 1e-3 mean free times: without it a ring of N >> N_c(0.855) ~ 13 grains collapses at once):
   events/s over the same number of events.
 
+Peer comparison (``--peer billiards``, issue 23): published event-driven hard-sphere codes (3-D, cell or
+neighbour lists, e.g. F. Smallenburg, arXiv:2201.01100, which benchmarks itself against DynamO and others)
+are C/C++ programs, not in the package registries reachable here.  PyPI has two event-driven hard-particle
+packages: ``hardspheres-2d`` (a Rust/maturin sdist requiring Python >= 3.13; bounce runs on 3.11 and the
+Rust crates it needs cannot be fetched here: not run) and ``billiards`` 0.5.0 (pure Python and numpy, 2-D
+disks, elastic only, walls but no periodic boundary, an all-pairs time-of-impact table recomputed in O(N)
+per collision, no cell list, float64).  The latter runs: the ring's grains become disks of radius 1/2 on a
+line between two walls ell apart (same N, density, velocities; r = 1), beside the rigid engine on the ring
+with r = 1 and no TC model.  An event is a collision in both (the peer's include the rare ones with a
+wall, printed); their first 150 pair collisions are the same pairs at times equal to 4e-11 relative (the
+peer's positions accumulate rounding).  The peer is imported only when asked; install it in its own venv
+with ``--no-deps`` and put that venv's site-packages on PYTHONPATH.
+
 Every contact time is to rounding in these runs (the engine has no accuracy setting).  The process is
 pinned to one core when possible; the machine may be shared: the load average before and after is
 printed.  Run::
 
     python benchmarks/bench_gas.py                     # N = 1e3 and 1e5, 2e6 events, 5 repeats
     python benchmarks/bench_gas.py --n 1000 --events 200000 --repeats 3
+    PYTHONPATH=$PYTHONPATH:/work/peer-venv/lib/python3.11/site-packages \
+        python benchmarks/bench_gas.py --n 1000 --events 200000 --repeats 3 --peer billiards
 """
 
 from __future__ import annotations
 
 import argparse
+import copy
 import math
 import os
 import statistics
@@ -198,11 +214,85 @@ def bench_rigid(n: int, events: int, repeats: int) -> dict:
             "stop": run.stop, "events": run.events}
 
 
+def bench_rigid_elastic(n: int, events: int, repeats: int) -> dict:
+    """The rigid engine on the peer's system: the same ring, r = 1, no TC model."""
+    ell, x, v = ring(n)
+    p = RigidParameters(n, "ring", 0.0, 1.0, ell=ell, size=1.0)
+    state = RigidState(x, v)
+    start = GasRun(p, state, math.inf, 0).arrays()
+    GasRun(p, state, math.inf, 0, arrays=start).step(10)  # compile
+    totals = []
+    for _ in range(repeats):
+        run = GasRun(p, state, math.inf, 0, arrays=start)
+        sec, _ = cpu(lambda: run.step(events))
+        assert run.events == events, run.stop
+        totals.append(sec / events * 1e9)
+    return {"ns_per_event": statistics.median(totals), "events_per_s": 1e9 / statistics.median(totals)}
+
+
+def billiards_table(n: int):
+    """The ring's grains as the peer's disks of radius 1/2 on the line y = 0 (velocities along it), between
+    two walls ell apart (the ring's last gap split between them): same N, density and velocities."""
+    from billiards import Billiard, InfiniteWall
+    ell, x, v = ring(n)
+    half_gap = (ell - x[-1] - 1.0) / 2.0
+    walls = [InfiniteWall((-half_gap, -1.0), (-half_gap, 1.0), inside="right"),
+             InfiniteWall((ell - half_gap, -1.0), (ell - half_gap, 1.0), inside="left")]
+    table = Billiard(walls)
+    for x_k, v_k in zip(x, v):
+        table.add_ball((x_k + 0.5, 0.0), (v_k, 0.0), radius=0.5)
+    return table
+
+
+def bench_peer_billiards(n: int, events: int, repeats: int) -> dict:
+    """The peer: ``events`` collisions of :func:`billiards_table`, the next one chosen as its ``evolve`` does."""
+    start = billiards_table(n)
+    totals, walls = [], 0
+    for _ in range(repeats):
+        table = copy.deepcopy(start)
+
+        def collide():
+            kinds = 0
+            for _ in range(events):
+                if table.toi_next[0] <= table.obstacles_next[0]:
+                    table.bounce_ballball()
+                else:
+                    table.bounce_ballobstacle()
+                    kinds += 1
+            return kinds
+
+        sec, walls = cpu(collide)
+        totals.append(sec / events * 1e9)
+    return {"ns_per_event": statistics.median(totals), "events_per_s": 1e9 / statistics.median(totals),
+            "wall_fraction": walls / events}
+
+
+PEERS = {"billiards": bench_peer_billiards}
+
+
+def peer_row(name: str, n: int, events: int, peer_events: int, repeats: int) -> None:
+    try:
+        peer = PEERS[name](n, peer_events, repeats)
+    except ImportError as exc:
+        print(f"peer {name!r} is not installed ({exc}): install it in its own venv without its dependencies "
+              f"(python -m venv /work/peer-venv && /work/peer-venv/bin/pip install --no-deps {name}) and put that "
+              "venv's site-packages on PYTHONPATH", flush=True)
+        return
+    rigid = bench_rigid_elastic(n, events, repeats)
+    print(f"{'rigid r=1':<10}{n:>8}{rigid['events_per_s']:>12.3g}{rigid['ns_per_event']:>12.0f}"
+          f"   bounce.gas rigid engine, ring, {events} collisions", flush=True)
+    print(f"{name:<10}{n:>8}{peer['events_per_s']:>12.3g}{peer['ns_per_event']:>12.0f}"
+          f"   peer, box, {peer_events} collisions ({peer['wall_fraction']:.1%} with a wall); "
+          f"ratio {peer['ns_per_event'] / rigid['ns_per_event']:.3g}", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, nargs="+", default=[1000, 100_000])
     ap.add_argument("--events", type=int, default=2_000_000)
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--peer", choices=sorted(PEERS), help="also time this peer beside the rigid engine (r = 1)")
+    ap.add_argument("--peer-events", type=int, default=1000, help="collisions per repeat for the peer")
     args = ap.parse_args()
     if hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
@@ -221,6 +311,12 @@ def main() -> None:
         r = bench_rigid(n, args.events, args.repeats)
         print(f"{'rigid':<8}{n:>8}{r['events_per_s']:>12.3g}{r['ns_per_event']:>10.0f}"
               f"{'':>16}{'':>12}{'':>8}{'':>13}   stop: {r['stop']} after {r['events']} events", flush=True)
+    if args.peer:
+        print(f"\npeer comparison (elastic hard rods of length 1, same N, density and velocities): "
+              f"{args.repeats} repeats, medians")
+        print(f"{'engine':<10}{'N':>8}{'events/s':>12}{'ns/event':>12}")
+        for n in args.n:
+            peer_row(args.peer, n, args.events, args.peer_events, args.repeats)
     load1 = os.getloadavg()
     print(f"CPU {time.process_time() - cpu0:.1f} s, wall {time.time() - wall0:.1f} s; load average after: "
           f"{load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
