@@ -114,6 +114,7 @@ def measure(spec: dict, inputs: list) -> SimpleNamespace:
 
 CLAIMS: list = []
 
+
 def _speeds_low(ds):
     """Records whose impact speeds are 5 % low for their restitution: 1 - r = 1.05 mu u/(3 gamma) at small u."""
     if "xdot" in ds:
