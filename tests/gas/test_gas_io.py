@@ -108,7 +108,7 @@ def test_a_checkpoint_of_another_engine_layout_is_refused_in_one_line(tmp_path):
     np.savez(checkpoint_path(out), snapshots=np.int64(0), **arrays)
     with pytest.raises(InputError, match="^--resume: the checkpoint's 'sl' does not fit this engine"):
         stream_to_netcdf(p, s, out, 100, snapshot_every=70, chunk=97, resume=True)
-    assert not out.exists()
+    assert not out.exists() and partial_path(out).exists() and checkpoint_path(out).exists()  # nothing clobbered
 
 
 def _run(tmp_path, *args):
