@@ -17,18 +17,11 @@ def sticky_file(eps):
     return dataset("data", sticky_dataset(eps))
 
 
-def sticky_run_spec(w):
-    """Scene spec of one eps run: only gamma, mu, Ydot0, horizon and cap (not the eps lists)."""
-    return as_json({
-        "gamma": STICKY["gamma"], "mu": STICKY["mu"],
-        "initial": {"sticky": {"eps": float(w.eps), "ydot": STICKY["ydot0"]}},
-        "stop": {"events": STICKY["events"], "t_max": STICKY["t_max"]},
-    })
-
-
 SCENES = sorted(config["scenes"])
 GAS_SCENES = sorted(config.get("gas_scenes", {}))
 STICKY = config["sticky"]
+#: every eps run of eq. sticky-ic a rule reads (eps = 0, the trajectories' and the convergence's), once each
+STICKY_EPS = sorted({float(e) for e in [0.0, *STICKY["eps_traj"], *STICKY["eps_convergence"]]})
 STICKY_CONV = [sticky_file(0.0)] + [sticky_file(e) for e in STICKY["eps_convergence"] if float(e) != 0.0]
 
 # figure name -> (input datasets, spec): the registry bounce.figures.FIGURES, one line per figure

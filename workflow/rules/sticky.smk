@@ -2,21 +2,23 @@
 inference of the unstated gamma, mu from the paper's t_c = 5.23..."""
 
 
-rule sticky_run:
-    """Simulate eq. sticky-ic for one eps into netCDF."""
+rule sticky_runs:
+    """Simulate eq. sticky-ic for every eps of config `sticky` into one netCDF each: one job, since a run is much
+    shorter than a job's start-up (~1 s of CPU each, when they were one job per eps)."""
     output:
-        "results/data/sticky/eps{eps}.nc",
+        [sticky_file(eps) for eps in STICKY_EPS],
     params:
-        spec=sticky_run_spec,
+        spec=as_json({"gamma": STICKY["gamma"], "mu": STICKY["mu"], "ydot0": STICKY["ydot0"], "eps": STICKY_EPS,
+                      "stop": {"events": STICKY["events"], "t_max": STICKY["t_max"]}}),
     resources:
         mem_mb=1000,
         runtime=10,
     log:
-        "results/logs/sticky/eps{eps}.log",
+        "results/logs/sticky/runs.log",
     benchmark:
-        "results/timing/sticky/eps{eps}.tsv"
+        "results/timing/sticky/runs.tsv"
     shell:
-        "python -m bounce.pipeline.tasks scene --name sticky-eps{wildcards.eps} --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -m bounce.pipeline.tasks sticky-runs --spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
 rule sticky_convergence:

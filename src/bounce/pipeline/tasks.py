@@ -21,6 +21,19 @@ def _scene(args) -> None:
     write_netcdf(scene_dataset(args.spec, name=args.name), args.out[0])
 
 
+def _sticky_runs(args) -> None:
+    """Every eps run of eq. sticky-ic (``--spec``: gamma, mu, ydot0, stop and the eps list), one file each, in the
+    order of ``--out``; each the scene ``sticky-eps<eps>`` (:func:`bounce.paths.sticky_dataset`)."""
+    from ..paths import sticky_dataset
+    from ..scenes import scene_dataset
+
+    spec = args.spec
+    for eps, out in zip(spec["eps"], args.out, strict=True):
+        scene = {"gamma": spec["gamma"], "mu": spec["mu"], "initial": {"sticky": {"eps": eps, "ydot": spec["ydot0"]}},
+                 "stop": spec["stop"]}
+        write_netcdf(scene_dataset(scene, name=f"sticky-{Path(sticky_dataset(eps)).name}"), out)
+
+
 def _gas_scene(args) -> None:
     from ..scenes import gas_scene_dataset
 
@@ -153,6 +166,7 @@ def _thumbnails(args) -> None:
 TASKS = {
     "scene": _scene,
     "gas-scene": _gas_scene,
+    "sticky-runs": _sticky_runs,
     "sticky-inference": _sticky_inference,
     "sticky-convergence": _sticky_convergence,
     "figure": _figure,
