@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import sys
 from pathlib import Path
@@ -203,4 +204,10 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":  # the guard also keeps spawned sweep workers from re-running the task
-    sys.exit(main())
+    status = main()
+    # every output is written, closed and renamed in place by now (bounce.io's atomic writes, figures' savefig, the
+    # workers joined): end without the interpreter's teardown, which frees every module and compiled kernel one by
+    # one and cost ~0.4 s of CPU per job (a check job: 4.0 s -> 3.6 s), ~40 s over the pipeline's jobs
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(status)
