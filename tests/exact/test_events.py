@@ -220,3 +220,20 @@ def test_a_launch_whose_speed_cubed_underflows_still_bounces(speed, mu):
     assert np.allclose(traj.energy_excess, 0.5 * speed * speed, rtol=1e-14, atol=0.0)
     xn = contact_rounding_level(speed * speed / gamma)  # the scale of x over the flight
     assert not _is_tangential(-speed, -2.0 * gamma, 0.0, xn)
+
+
+def test_first_events_in_one_call_are_the_bits_of_one_event_simulations():
+    """bounce.exact.events.first_events_linear (the thinned records' gaps, analysis.observables.dataset_series):
+    each state's first event equals simulate(..., max_events=1) from it, bit for bit, impacts and the rest."""
+    from bounce.exact.events import first_events_linear
+
+    p = Parameters(0.01, 0.05)
+    rng = np.random.default_rng(3)
+    u = np.concatenate([rng.uniform(1e-6, 0.3, 40), [1e-9, 0.0]])
+    a = np.concatenate([rng.uniform(-0.05, 0.05, 40), [0.0, 0.0]])
+    eta = np.concatenate([rng.uniform(-0.05, 0.05, 40), [0.0, 0.0]])  # the last: at rest on the floor
+    kind, tau, u_after = first_events_linear(p, u, a, eta)
+    for i in range(u.size):
+        r = simulate(p, Deviations(0.0, u[i], a[i], eta[i]), max_events=1)
+        assert (kind[i], tau[i], u_after[i]) == (r.kind[0], r.tau[0], r.xdot[0]), i
+    assert set(kind) > {IMPACT}  # not only impacts were compared

@@ -12,8 +12,8 @@ import numpy as np
 import xarray as xr
 
 from ..kinds import IMPACT
-from ..model import Deviations, Parameters
-from ..simulate import simulate
+from ..exact.events import first_events_linear
+from ..model import Parameters
 from .theory import contact_derivatives
 
 QUANTITIES = ("tau", "xdot", "ratio", "xddot", "xdddot", "map")
@@ -70,7 +70,8 @@ def dataset_series(ds: xr.Dataset) -> dict:
     """Per-impact arrays at the kept events of a (possibly thinned) scene dataset.
 
     tau_n and Xdot_{n+1} need event k + 1; when it was not kept (a gap of a thinned file), one
-    event is simulated from the stored state after event k (exact: the core's own variables).
+    event is simulated from the stored state after event k (exact: the core's own variables; all such events in one
+    compiled call, :func:`bounce.exact.events.first_events_linear`).
     """
     gamma, mu = float(ds.attrs["gamma"]), float(ds.attrs["mu"])
     params = Parameters(gamma, mu)
@@ -80,17 +81,21 @@ def dataset_series(ds: xr.Dataset) -> dict:
     m = len(ev)
     tau_next = np.full(m, np.nan)
     xdot_next = np.full(m, np.nan)
-    ok = np.zeros(m, dtype=bool)
-    for i in range(m):
-        if kind[i] != IMPACT:
-            continue
-        if i + 1 < m and ev[i + 1] == ev[i] + 1:
-            if kind[i + 1] == IMPACT:
-                tau_next[i], xdot_next[i], ok[i] = tau[i + 1], xdot[i + 1], True
-        elif i + 1 < m and xdot[i] > 0.0:  # a gap of the thinned records (the last record ends the data)
-            r = simulate(params, Deviations(0.0, float(xdot[i]), float(xidot[i]), float(eta[i])), max_events=1)
-            if len(r) == 1 and r.kind[0] == IMPACT:
-                tau_next[i], xdot_next[i], ok[i] = r.tau[0], r.xdot[0], True
+    impact = kind == IMPACT
+    follows = np.zeros(m, dtype=bool)
+    follows[:-1] = ev[1:] == ev[:-1] + 1
+    kept = impact & follows
+    kept[:-1] &= kind[1:] == IMPACT
+    tau_next[:-1][kept[:-1]], xdot_next[:-1][kept[:-1]] = tau[1:][kept[:-1]], xdot[1:][kept[:-1]]
+    # a gap of the thinned records (the last record ends the data): the next event from the stored state
+    gap = impact & ~follows & (xdot > 0.0)
+    gap[-1] = False
+    (i,) = np.nonzero(gap)
+    kinds, tau_gap, xdot_gap = first_events_linear(params, xdot[i], xidot[i], eta[i])
+    simulated = kinds == IMPACT
+    tau_next[i[simulated]], xdot_next[i[simulated]] = tau_gap[simulated], xdot_gap[simulated]
+    ok = kept
+    ok[i[simulated]] = True
     return {
         "n": (ev[ok] + 1).astype(np.float64), "t": t[ok], "tau": tau_next[ok], "xdot": xdot[ok],
         "xdot_next": xdot_next[ok], "xidot": xidot[ok], "eta": eta[ok], "gamma": gamma, "mu": mu,

@@ -439,6 +439,39 @@ def run_events(
     return n, stop, t_hi + t_lo
 
 
+@njit(cache=True)
+def _first_events(u, a, eta, gamma, params, coefs, sparams, scoefs, kind, tau, u_after):
+    """:func:`run_events` with max_events = 1 from each state (x = 0, u[i], a[i], eta[i]) at t = 0, into
+    ``kind`` (-1: no event), ``tau`` and ``u_after``; returns the index of the first failed search, or -1."""
+    out = [np.empty(1) for _ in range(6)]
+    out_kind = np.empty(1, dtype=np.int8)
+    for i in range(u.size):
+        n, stop, _ = run_events(0.0, u[i], a[i], eta[i], gamma, params, coefs, sparams, scoefs, 1, math.inf, 0.0,
+                                out[0], out[1], out[2], out[3], out[4], out[5], out_kind)
+        if stop == STOP_FAILED:
+            return i
+        kind[i] = out_kind[0] if n == 1 else -1
+        tau[i] = out[1][0]
+        u_after[i] = out[2][0]
+    return -1
+
+
+def first_events_linear(params, u, a, eta):
+    """The first event after each state (x = 0, x' = u[i], xi' = a[i], xi + gamma = eta[i]) at t = 0: its kind (-1
+    if none), duration and x' after it, the bits of ``simulate(params, Deviations(0, u[i], a[i], eta[i]),
+    max_events=1)`` (the same loop, :func:`run_events`) in one compiled call.  For states of a supported run's
+    records (no domain check here); a failed root search raises, as in :func:`simulate_linear`."""
+    u, a, eta = (np.ascontiguousarray(v, dtype=np.float64) for v in (u, a, eta))
+    params_arr, coefs = make_oscillator(params.mu)
+    sparams, scoefs = make_oscillator(params.mu / SQRT2)
+    kind, tau, u_after = np.full(u.size, -1, dtype=np.int8), np.full(u.size, np.nan), np.full(u.size, np.nan)
+    failed = _first_events(u, a, eta, params.gamma, params_arr, coefs, sparams, scoefs, kind, tau, u_after)
+    if failed >= 0:
+        raise RuntimeError(f"root finder did not converge from state {failed} (x' = {u[failed]!r}); please report the "
+                           "parameters and initial state")
+    return kind, tau, u_after
+
+
 def simulate_linear(params, initial, max_events: int = 1000, t_max: float = math.inf, energy_stop: float = 0.0):
     """Simulate the paper's linear spring from ``initial`` (a :class:`bounce.model.State`, or
     :class:`bounce.model.Deviations`): validated stop rules and supported domain
