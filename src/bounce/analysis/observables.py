@@ -59,8 +59,8 @@ def trajectory_series(traj) -> dict:
     p = traj.params
     k = np.arange(len(traj) - 1)  # event k = impact n = k + 1; needs events k and k + 1
     impacts = (traj.kind[:-1] == IMPACT) & (traj.kind[1:] == IMPACT)
-    if impacts.all():  # every event an impact (the drops after their sticky phase): views, not copies of 1e6 events
-        k, now, nxt = k, slice(0, k.size), slice(1, k.size + 1)
+    if impacts.all():  # every event an impact (every cell of asymptotic-atlas): views, not copies of 1e6 events
+        now, nxt = slice(0, k.size), slice(1, k.size + 1)
     else:
         k = k[impacts]
         now, nxt = k, k + 1
