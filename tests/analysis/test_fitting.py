@@ -1,12 +1,13 @@
 """bounce.analysis.fitting's limits of the map eq. mappa: Richardson extrapolation (richardson_ln) and the correction's decay
-exponent (correction_decay), on sequences with known limits and corrections."""
+exponent (correction_decay), on sequences with known limits and corrections; the fast forms of its helpers (log_select,
+settle_index, column_max_abs) against their definitions."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from bounce.analysis.fitting import correction_decay, log_select, richardson_ln
+from bounce.analysis.fitting import column_max_abs, correction_decay, log_select, richardson_ln, settle_index
 
 
 def _sequence(n, L=1.0, c=2.0, d=-3.0, p=1.0, second=5.0):
@@ -57,3 +58,30 @@ def test_log_select_is_the_log_spaced_pick_of_the_samples_inside_the_window():
             np.minimum(np.searchsorted(n[inside], np.geomspace(lo, hi, k)), inside.size - 1))]
         got = log_select(n, lo, hi, k)
         assert got.dtype == expected.dtype and np.array_equal(got, expected), trial
+
+
+def test_settle_index_scanned_in_blocks_is_its_definition():
+    """settle_index's backward scan in blocks against its definition on the whole array (the last sample with
+    |q/ref - 1| > threshold or NaN, plus one): settled, never settled, NaN, the last bad sample on a block's edge."""
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        size = int(rng.integers(0, 400))
+        q = 1.0 + rng.normal(0.0, 0.2, size) * np.geomspace(1.0, 1e-4, size)
+        if trial % 3 == 0 and size:
+            q[rng.integers(0, size)] = np.nan
+        ref, threshold = float(rng.uniform(0.9, 1.1)), float(rng.choice([0.0, 1e-3, 0.05, 0.2, 10.0]))
+        bad = np.nonzero(~(np.abs(q / ref - 1.0) <= threshold))[0]
+        expected = 0 if bad.size == 0 else int(bad[-1]) + 1
+        for block in (1, 2, 7, 64, 1 << 15):
+            assert settle_index(q, ref, threshold, block) == expected, (trial, block)
+
+
+def test_column_max_abs_is_the_max_over_axis_0():
+    """column_max_abs against np.abs(a).max(axis=0): the same numbers (a max is exact), NaN and inf propagated."""
+    rng = np.random.default_rng(6)
+    for rows, cols in ((1, 1), (7, 3), (2000, 5), (400, 7)):
+        a = rng.normal(0.0, 1.0, (rows, cols)) * 10.0 ** rng.integers(-300, 300, (rows, cols))
+        a[0, 0] = -0.0
+        if rows > 3:
+            a[3, -1], a[2, 0] = np.nan, -np.inf
+        assert np.array_equal(column_max_abs(a), np.abs(a).max(axis=0), equal_nan=True)

@@ -37,6 +37,15 @@ def test_T_xi_against_mpmath(mu):
     assert theory.T_xi(mu) == pytest.approx(expect, rel=4e-16)
 
 
+def test_T_xi_is_the_compiled_kernels_half_period():
+    """T_xi evaluates natural_frequency's Python body (no kernel load): the bits of the compiled frequency the engines
+    use, on both branches of its formula and near mu = 1."""
+    from bounce.exact.oscillator import natural_frequency
+
+    mus = np.concatenate([np.random.default_rng(7).uniform(0.0, 1.0, 20000), [0.0, 1e-16, 0.5, 0.5 - 1e-17, 1 - 1e-16]])
+    assert all(theory.T_xi(m) == math.pi / natural_frequency(m) for m in mus)
+
+
 def test_char_times():
     T_psi, T_x, T_d = theory.char_times(0.02, 0.3)
     assert T_psi == pytest.approx(5.0) and T_x == theory.T_xi(0.3) and T_d == pytest.approx(1 / 0.3)

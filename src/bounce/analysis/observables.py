@@ -59,10 +59,14 @@ def trajectory_series(traj) -> dict:
     p = traj.params
     k = np.arange(len(traj) - 1)  # event k = impact n = k + 1; needs events k and k + 1
     impacts = (traj.kind[:-1] == IMPACT) & (traj.kind[1:] == IMPACT)
-    k = k[impacts]
+    if impacts.all():  # every event an impact (every cell of asymptotic-atlas): views, not copies of 1e6 events
+        now, nxt = slice(0, k.size), slice(1, k.size + 1)
+    else:
+        k = k[impacts]
+        now, nxt = k, k + 1
     return {
-        "n": (k + 1).astype(np.float64), "t": traj.t[k], "tau": traj.tau[k + 1], "xdot": traj.xdot[k],
-        "xdot_next": traj.xdot[k + 1], "xidot": traj.xidot[k], "eta": traj.eta[k],
+        "n": (k + 1).astype(np.float64), "t": traj.t[now], "tau": traj.tau[nxt], "xdot": traj.xdot[now],
+        "xdot_next": traj.xdot[nxt], "xidot": traj.xidot[now], "eta": traj.eta[now],
         "gamma": p.gamma, "mu": p.mu,
     }
 

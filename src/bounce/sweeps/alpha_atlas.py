@@ -66,18 +66,18 @@ def measure_cell(a: float, b: float, rho: float, gamma: float, mu: float, spec: 
     traj = simulate(Parameters(gamma, mu, PowerSpring(rho, a, b)), start, max_events=int(spec["events"]))
     n = np.arange(1.0, len(traj) + 1.0)
     alpha = nonlin_alpha_limit(gamma, mu, rho, a, b)
-    sel = (n >= float(spec["fit_n_min"])) & (traj.kind == IMPACT)
+    sel = np.flatnonzero((n >= float(spec["fit_n_min"])) & (traj.kind == IMPACT))  # the fitted impacts
     out = {"n_events": len(traj), "complete": int(traj.stop_reason == "max_events"), "alpha_theory": alpha}
     mu_eff, scale = nonlin_sticky_scaling(gamma, mu, rho, a, b)  # the spring's relaxation, fitted along
-    series = {"alpha": n * traj.xdot * alpha, "flight": traj.xdot / (gamma * traj.tau)}
-    for name, q in series.items():
-        nn, qq = n[sel], q[sel]
+    nn, xdot, t = n[sel], traj.xdot[sel], traj.t[sel]
+    series = {"alpha": nn * xdot * alpha, "flight": xdot / (gamma * traj.tau[sel])}
+    for name, qq in series.items():
         fit = dict.fromkeys(FIT_KEYS, math.nan)
         if out["complete"] and nn.size >= 20 and nn[-1] / nn[0] >= 10.0:
             fit["limit"], fit["limit_err"] = richardson_ln(nn, qq)
             s = log_select(nn, nn[0], nn[-1], int(spec["points"]))  # least squares on log-spaced impacts
             fit["tail_limit"] = tail_limit(nn[s], qq[s])[0]
-            spring = np.column_stack(spring_columns(traj.t[sel][s] * scale, mu_eff, 2))
+            spring = np.column_stack(spring_columns(t[s] * scale, mu_eff, 2))
             fit["exponent"], fit["exponent_err"], _ = correction_decay(nn[s], qq[s], spring)
             fit["last"] = float(qq[-1])
         out[name] = fit
