@@ -177,7 +177,7 @@ def test_alpha_atlas_limits_are_one_in_every_cell():
                                   "alpha-atlas"])
 def test_ci_sized_sweep_through_the_task_entry_points(name, ci_results):
     """The CI-sized sweep as the pipeline made it (tests/conftest.py: ci_results; workflow/rules/sweeps.smk calls
-    bounce.pipeline.tasks sweep-shard with the rule's 2 workers, sweep-gather, sweep-figure): every shard, the
+    bounce.pipeline.tasks sweep-shard with the rule's 2 workers, sweep-gather with its figure): every shard, the
     gathered file with its attributes, units and long names, the figure.  (It ran the three entry points itself
     on the same CI-sized spec; the pipeline's run is the same calls, so CI no longer computes the sweeps twice.)"""
     spec = _ci_spec(name)
@@ -193,7 +193,7 @@ def test_ci_sized_sweep_through_the_task_entry_points(name, ci_results):
 
 
 def test_task_entry_points_run_a_sweep(tmp_path):
-    """bounce.pipeline.tasks sweep-shard, sweep-gather and sweep-figure on a small sweep in two shards, in this process
+    """bounce.pipeline.tasks sweep-shard and sweep-gather (with the figure) on a small sweep in two shards, in this process
     (no worker processes: they are test_gathered_dataset_does_not_depend_on_shards_or_workers'): exit status 0, the
     attributes, units and long names, the figure, and the gathered file equal to gather's here."""
     import json
@@ -204,10 +204,9 @@ def test_task_entry_points_run_a_sweep(tmp_path):
     for k, path in enumerate(shards):
         assert task(["sweep-shard", "--name", name, "--spec", text, "--shard", str(k), "--workers", "1",
                      "--out", str(path)]) == 0
-    out = tmp_path / f"{name}.nc"
-    assert task(["sweep-gather", "--name", name, "--spec", text, "--inputs", *map(str, shards), "--out", str(out)]) == 0
-    png, pdf = tmp_path / f"fig-{name}.png", tmp_path / f"fig-{name}.pdf"
-    assert task(["sweep-figure", "--name", name, "--spec", text, "--inputs", str(out), "--out", str(png), str(pdf)]) == 0
+    out, png, pdf = tmp_path / f"{name}.nc", tmp_path / f"fig-{name}.png", tmp_path / f"fig-{name}.pdf"
+    assert task(["sweep-gather", "--name", name, "--spec", text, "--inputs", *map(str, shards),
+                 "--out", str(out), str(png), str(pdf)]) == 0
     ds = read_dataset(out)
     assert ds.attrs["sweep"] == name and ds.attrs["git_commit"]
     for var in ds.data_vars.values():

@@ -41,11 +41,14 @@ rule sweep_shard:
 
 
 rule sweep_gather:
-    """Every shard of a sweep -> results/sweeps/<name>.nc (the same bytes whatever ran the shards)."""
+    """Every shard of a sweep -> results/sweeps/<name>.nc (the same bytes whatever ran the shards), then its figure,
+    drawn from that file alone (one job: a figure job of its own was mostly start-up)."""
     input:
         lambda w: SWEEP_SHARDS[w.name],
     output:
-        "results/sweeps/{name}.nc",
+        nc="results/sweeps/{name}.nc",
+        png=report("results/sweeps/fig-{name}.png", caption="../report/sweep.rst", category="Sweeps"),
+        pdf="results/sweeps/fig-{name}.pdf",
     params:
         spec=lambda w: as_json(SWEEP_SPEC[w.name]),
     resources:
@@ -59,30 +62,7 @@ rule sweep_gather:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
         "python -m bounce.pipeline.tasks sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
-        "--out {output} > {log} 2>&1"
-
-
-rule sweep_figure:
-    """A sweep's figure, from the gathered file alone."""
-    input:
-        "results/sweeps/{name}.nc",
-    output:
-        png=report("results/sweeps/fig-{name}.png", caption="../report/sweep.rst", category="Sweeps"),
-        pdf="results/sweeps/fig-{name}.pdf",
-    params:
-        spec=lambda w: as_json(SWEEP_SPEC[w.name]),
-    resources:
-        mem_mb=1000,
-        runtime=10,
-    log:
-        "results/logs/sweeps/{name}/figure.log",
-    benchmark:
-        "results/timing/sweeps/{name}/figure.tsv"
-    wildcard_constraints:
-        name="|".join(re.escape(n) for n in SWEEPS) or "^$",
-    shell:
-        "python -m bounce.pipeline.tasks sweep-figure --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
-        "--out {output.png} {output.pdf} > {log} 2>&1"
+        "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
 
 
 rule sweeps:

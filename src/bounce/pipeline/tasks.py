@@ -143,18 +143,15 @@ def _sweep_shard(args) -> None:
 
 
 def _sweep_gather(args) -> None:
-    """Every shard of a sweep -> its dataset."""
+    """Every shard of a sweep -> its dataset (``--out NC``), then its figure drawn from that file alone (``--out NC PNG
+    PDF``): one job, as a figure job was mostly start-up (~1 s of CPU)."""
     from ..sweeps import get
     from ..sweeps.base import gather
 
-    write_netcdf(gather(get(args.name), args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
-
-
-def _sweep_figure(args) -> None:
-    """A sweep's figure, from its gathered dataset alone."""
-    from ..sweeps import get
-
-    get(args.name).plot(read_dataset(args.inputs[0]), args.spec, args.out)
+    sweep = get(args.name)
+    write_netcdf(gather(sweep, args.spec, [read_dataset(p) for p in args.inputs]), args.out[0])
+    if args.out[1:]:
+        sweep.plot(read_dataset(args.out[0]), args.spec, args.out[1:])
 
 
 def _thumbnails(args) -> None:
@@ -179,7 +176,6 @@ TASKS = {
     "readme": _readme,
     "sweep-shard": _sweep_shard,
     "sweep-gather": _sweep_gather,
-    "sweep-figure": _sweep_figure,
 }
 
 
