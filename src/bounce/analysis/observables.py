@@ -93,13 +93,13 @@ def dataset_series(ds: xr.Dataset) -> dict:
     tau_next[:-1][kept[:-1]], xdot_next[:-1][kept[:-1]] = tau[1:][kept[:-1]], xdot[1:][kept[:-1]]
     # a gap of the thinned records (the last record ends the data): the next event from the stored state
     gap = impact & ~follows & (xdot > 0.0)
-    gap[-1] = False
+    gap[-1:] = False  # (an empty dataset has no last record)
     (i,) = np.nonzero(gap)
     kinds, tau_gap, xdot_gap = first_events_linear(params, xdot[i], xidot[i], eta[i])
-    simulated = kinds == IMPACT
-    tau_next[i[simulated]], xdot_next[i[simulated]] = tau_gap[simulated], xdot_gap[simulated]
-    ok = kept
-    ok[i[simulated]] = True
+    i = i[kinds == IMPACT]
+    tau_next[i], xdot_next[i] = tau_gap[kinds == IMPACT], xdot_gap[kinds == IMPACT]
+    ok = kept.copy()
+    ok[i] = True
     return {
         "n": (ev[ok] + 1).astype(np.float64), "t": t[ok], "tau": tau_next[ok], "xdot": xdot[ok],
         "xdot_next": xdot_next[ok], "xidot": xidot[ok], "eta": eta[ok], "gamma": gamma, "mu": mu,

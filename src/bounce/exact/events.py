@@ -439,6 +439,11 @@ def run_events(
     return n, stop, t_hi + t_lo
 
 
+def _tables(mu: float) -> tuple:
+    """The oscillator tables :func:`run_events` takes: those of mu (flights), then of mu/sqrt(2) (sticky phases)."""
+    return (*make_oscillator(mu), *make_oscillator(mu / SQRT2))
+
+
 @njit(cache=True)
 def _first_events(u, a, eta, gamma, params, coefs, sparams, scoefs, kind, tau, u_after):
     """:func:`run_events` with max_events = 1 from each state (x = 0, u[i], a[i], eta[i]) at t = 0, into
@@ -462,10 +467,8 @@ def first_events_linear(params, u, a, eta):
     max_events=1)`` (the same loop, :func:`run_events`) in one compiled call.  For states of a supported run's
     records (no domain check here); a failed root search raises, as in :func:`simulate_linear`."""
     u, a, eta = (np.ascontiguousarray(v, dtype=np.float64) for v in (u, a, eta))
-    params_arr, coefs = make_oscillator(params.mu)
-    sparams, scoefs = make_oscillator(params.mu / SQRT2)
     kind, tau, u_after = np.full(u.size, -1, dtype=np.int8), np.full(u.size, np.nan), np.full(u.size, np.nan)
-    failed = _first_events(u, a, eta, params.gamma, params_arr, coefs, sparams, scoefs, kind, tau, u_after)
+    failed = _first_events(u, a, eta, params.gamma, *_tables(params.mu), kind, tau, u_after)
     if failed >= 0:
         raise RuntimeError(f"root finder did not converge from state {failed} (x' = {u[failed]!r}); please report the "
                            "parameters and initial state")
@@ -480,9 +483,8 @@ def simulate_linear(params, initial, max_events: int = 1000, t_max: float = math
     max_events, t_max, energy_stop = stop_rules(max_events, t_max, energy_stop)
     start = initial.deviations(params)
     check_supported(params, start)
-    params_arr, coefs = make_oscillator(params.mu)
-    sparams, scoefs = make_oscillator(params.mu / SQRT2)
+    tables = _tables(params.mu)
     return run_into_trajectory(
-        lambda *buffers: run_events(start.x, start.xdot, start.xidot, start.eta, params.gamma, params_arr, coefs,
-                                    sparams, scoefs, max_events, t_max, energy_stop, *buffers),
+        lambda *buffers: run_events(start.x, start.xdot, start.xidot, start.eta, params.gamma, *tables,
+                                    max_events, t_max, energy_stop, *buffers),
         params, initial, (max_events, t_max, energy_stop), "root finder")
