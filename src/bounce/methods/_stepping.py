@@ -1,15 +1,23 @@
 """Helpers shared by the time-stepping methods (penalty, Moreau-Jean): failure codes, the
 integer state slots of their kernels, the chunked driver with its CPU budget, the spring law's
-physics as kernel arguments, energy and interpolation kernels.
+physics bound into their kernels, energy and interpolation kernels.
 
-The kernels take the law's numba functions (:class:`bounce.springs.base.Physics`) as arguments:
-numba compiles a kernel once per law (per process: a kernel specialised on a function argument is
-not cached on disk) and inlines the law's functions, so a kernel runs as fast as with the linear
-right-hand side written inline (measured: a Verlet loop, 4.73 ns per step either way)."""
+A kernel is written once, as a template that calls the spring law's physics by the names of
+:class:`bounce.springs.base.Physics` (``force``, ``stiffness``, ``damping``, ``potential``, each of (xi, c));
+:func:`with_physics` compiles it once per law with the law's numba functions bound to those names.
+numba inlines them, so a kernel runs as fast as with the linear right-hand side written inline
+(measured: a Verlet loop, 4.73 ns per step either way), and caches it on disk like every other
+kernel: compiled once per environment, not once per process (issue 22).  Passing the law's functions
+as kernel arguments instead would compile the kernel again in every process (~1-2 s per kernel and law):
+numba keys its cache index on a function argument's identity, which is new in every process."""
 
 from __future__ import annotations
 
+import functools
+import hashlib
+import inspect
 import time
+import types
 
 import numpy as np
 from numba import njit
@@ -43,11 +51,45 @@ def drive(advance, ist, budget: float) -> tuple[str, int, float]:
     return failure, index, time.process_time() - start
 
 
+#: the law's physics as a kernel template names it; :func:`with_physics` binds them per law (unbound here: a
+#: template is never compiled as it stands)
+force = stiffness = damping = potential = None
+
+
+@functools.cache
+def with_physics(template, law_type):
+    """The kernel ``template`` (a plain function) compiled with ``law_type``'s physics bound to the names
+    ``force``, ``stiffness``, ``damping``, ``potential`` (module docstring); once per template and law.
+
+    Cached on disk under ``<template>[<law name>-<digest>]``: the digest is that of the source files of the
+    law's physics, so that editing a law defined outside the package (whose files do not key
+    :mod:`bounce._jit_cache`'s directory) compiles its kernels afresh; a law with no source file on disk
+    (defined in a notebook) is compiled without a cache."""
+    files = {inspect.getsourcefile(f.py_func) for f in law_type.physics}
+    try:
+        digest = hashlib.sha256(b"".join(open(f, "rb").read() for f in sorted(files))).hexdigest()[:12]
+    except (OSError, TypeError):
+        digest = None
+    bound = dict(template.__globals__)
+    bound.update(law_type.physics._asdict())
+    kernel = types.FunctionType(template.__code__, bound, template.__name__, template.__defaults__)
+    kernel.__qualname__ = f"{template.__qualname__}[{law_type.name}-{digest}]"
+    kernel.__doc__ = template.__doc__
+    return njit(cache=digest is not None)(kernel)
+
+
 def law_arguments(params) -> tuple:
-    """(force, stiffness, damping, potential, c, xi_eq, V(xi_eq)): the spring law of ``params`` as the kernels take it."""
+    """(c, xi_eq, V(xi_eq)): the spring law's numbers of ``params`` as the kernels take them (its physics is
+    bound into the kernel by :func:`with_physics`)."""
     law = params.spring
     xi_eq = params.xi_eq
-    return (*law.physics, law.coefficients, xi_eq, law.potential(xi_eq))
+    return law.coefficients, xi_eq, law.potential(xi_eq)
+
+
+def initial_energy_excess(st, params) -> float:
+    """E - E_m at the state ``st`` (:func:`energy_excess`'s arithmetic, run by Python: the same bits, no compile)."""
+    return energy_excess.py_func(st.x, st.xdot, st.y, st.ydot, params.gamma, params.spring.physics.potential,
+                                 *law_arguments(params))
 
 
 @njit(inline="always")

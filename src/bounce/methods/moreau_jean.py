@@ -53,11 +53,11 @@ import functools
 import math
 
 import numpy as np
-from numba import njit
 
 from ._stepping import (
     DONE, F_ENDLESS, F_GAIN, FAIL, FAIL_IDX, IN_CONTACT, N_COMMON_SLOTS, N_CONTACT, N_STEP,
-    drive, energy_excess, fell_through, law_arguments, sample_step, sorted_samples, unsort,
+    damping, drive, energy_excess, fell_through, force, initial_energy_excess, law_arguments, potential, sample_step,
+    sorted_samples, stiffness, unsort, with_physics,
 )
 from .base import ANY_LAW, MethodResult, MethodSpec
 
@@ -72,10 +72,10 @@ X, U, Y, V, T_IN, E_MIN, X_MIN = range(7)
 N_IMPULSE = N_COMMON_SLOTS  # steps with a nonzero impulse
 
 
-@njit
 def _advance(fs, ist, gamma, mu, h, theta, e_rest, g_pred, n_steps, t_max, max_events, max_pen,
-             max_contact, energy_tol, t_out, v_out, e_out, dur_out, samples, y_samples,
-             force, stiffness, damping, potential, c, xi_eq, v_eq):
+             max_contact, energy_tol, t_out, v_out, e_out, dur_out, samples, y_samples, c, xi_eq, v_eq):
+    """Up to n_steps Moreau--Jean steps; updates the state arrays fs (float) and ist (int) in place.  The spring: the
+    law's physics of coefficients c (a template: :func:`~bounce.methods._stepping.with_physics` binds the law)."""
     x, u, y, v = fs[X], fs[U], fs[Y], fs[V]
     n = ist[N_STEP]
     for _ in range(n_steps):
@@ -172,9 +172,9 @@ def _warm(law):
     fs[E_MIN] = 1.0
     ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     buf = np.zeros(2)
-    _advance(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, 10, 1.0, 2, 0.1, 10.0, 1e-3,
-             buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1),
-             *law_arguments(Parameters(0.01, 0.01, law)))
+    with_physics(_advance, type(law))(fs, ist, 0.01, 0.01, 1e-3, 0.5, 1.0, 0.5, 10, 1.0, 2, 0.1, 10.0, 1e-3,
+                                      buf, buf.copy(), buf.copy(), buf.copy(), np.zeros(1), np.zeros(1),
+                                      *law_arguments(Parameters(0.01, 0.01, law)))
 
 
 def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sample_times=None) -> MethodResult:
@@ -185,17 +185,18 @@ def run(params, initial, setting=None, *, max_events=1000, t_max=math.inf, sampl
     gamma, mu = params.gamma, params.mu
     h, theta = float(cfg["dt"]), float(cfg["theta"])
     law = law_arguments(params)
+    advance = with_physics(_advance, type(params.spring))
     samples, order = sorted_samples(sample_times)
     y_s = np.full(samples.shape, np.nan)
     t_out, v_out, e_out, dur_out = (np.full(max_events, np.nan) for _ in range(4))
     fs = np.zeros(7)
     fs[X], fs[U], fs[Y], fs[V] = st.x, st.xdot, st.y, st.ydot
-    fs[E_MIN] = energy_excess(st.x, st.xdot, st.y, st.ydot, gamma, law[3], *law[4:])
+    fs[E_MIN] = initial_energy_excess(st, params)
     fs[X_MIN] = st.x
     ist = np.zeros(N_COMMON_SLOTS + 1, dtype=np.int64)
     budget = float(cfg["cpu_budget"])
     failure, failure_index, cpu = drive(
-        lambda: _advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]),
+        lambda: advance(fs, ist, gamma, mu, h, theta, float(cfg["restitution"]), float(cfg["gap_prediction"]),
                  CHUNK, float(t_max), int(max_events), float(cfg["max_penetration"]), float(cfg["max_contact"]),
                  float(cfg["energy_tol"]), t_out, v_out, e_out, dur_out, samples, y_s, *law),
         ist, budget,
