@@ -65,7 +65,7 @@ include: "workflow/rules/checks.smk"
 include: "workflow/rules/methods.smk"
 include: "workflow/rules/docs.smk"
 include: "workflow/rules/sweeps.smk"
-include: "workflow/rules/cluster.smk"
+include: "workflow/rules/hooks.smk"
 
 
 rule all:

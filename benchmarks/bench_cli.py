@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import resource
 import shutil
 import statistics
@@ -115,14 +116,21 @@ def job_kind(log: Path, logs: Path) -> str:
     return parts[0] if len(parts) > 1 else log.stem
 
 
+#: a job's last log line (bounce.pipeline.tasks.main): its CPU, how it started, its workers' CPU
+CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process(.*?), ([\d.]+) s in its worker processes")
+
+
 def logs_table(logs: Path) -> None:
     """Per job kind: jobs, smallest, median and total CPU of their ``cpu:`` lines (process + workers)."""
-    cpus = {}
+    cpus, served = {}, 0
     for log in sorted(logs.rglob("*.log")):
-        lines = [line.split() for line in log.read_text(errors="replace").splitlines() if line.startswith("cpu: ")]
+        lines = [m for m in map(CPU_LINE.match, log.read_text(errors="replace").splitlines()) if m]
         if lines:
-            cpus.setdefault(job_kind(log, logs), []).append(float(lines[-1][1]) + float(lines[-1][6]))
-    print(f"job CPU from {logs} (cpu: lines; the smallest bounds the kind's start-up)")
+            own, started_by, workers = lines[-1].groups()
+            cpus.setdefault(job_kind(log, logs), []).append(float(own) + float(workers))
+            served += bool(started_by)
+    print(f"job CPU from {logs} (cpu: lines; the smallest bounds the kind's start-up; {served} jobs forked by the "
+          f"run's task server, whose imports they do not count)")
     print(f"  {'kind':18} {'jobs':>5} {'min s':>7} {'median s':>9} {'total s':>8}")
     for kind, values in sorted(cpus.items()):
         print(f"  {kind:18} {len(values):5d} {min(values):7.2f} {statistics.median(values):9.2f} {sum(values):8.1f}")

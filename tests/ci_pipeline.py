@@ -24,10 +24,12 @@ def env() -> dict:
     return out
 
 
-def snakemake(workdir: Path, *args: str, check: bool = True, timeout: float = 900) -> subprocess.CompletedProcess:
-    """``snakemake --directory workdir *args``; on failure (``check``) an AssertionError with the tail of its output."""
+def snakemake(workdir: Path, *args: str, check: bool = True, timeout: float = 900,
+              extra_env: dict | None = None) -> subprocess.CompletedProcess:
+    """``snakemake --directory workdir *args`` (in :func:`env` updated with ``extra_env``); on failure (``check``) an
+    AssertionError with the tail of its output."""
     proc = subprocess.run([*SNAKEMAKE, "--directory", str(workdir), *args], capture_output=True, text=True,
-                          env=env(), timeout=timeout)
+                          env={**env(), **(extra_env or {})}, timeout=timeout)
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
     return proc

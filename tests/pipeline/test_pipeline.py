@@ -20,6 +20,7 @@ import pytest
 import xarray as xr
 import yaml
 
+from bounce.pipeline import taskserver
 from ci_pipeline import CI_CONFIG, ROOT, SNAKEMAKE, env, snakemake
 
 
@@ -116,7 +117,9 @@ def test_a_rerun_of_every_rule_gives_identical_bytes(ci_results, tmp_path):
     DAG (~3 min on 2 cores, 74 jobs): it still catches an output that depends on the time, the folder, the
     process (hash seeds, worker order) or the other jobs running beside it, in the code of every rule; what it
     no longer covers is such a dependence confined to one wildcard value of a rule (a rule whose output depends
-    on the clock for one scene only)."""
+    on the clock for one scene only).  The first run's jobs were forked by the run's task server
+    (bounce.pipeline.taskserver), the rerun's start afresh (BOUNCE_TASK_SERVER=off): a served job writes the
+    bytes of a fresh one."""
     launch = _launch_dir(ci_results)
     summary = snakemake(launch, "--configfile", str(CI_CONFIG), "--summary").stdout
     rows = list(csv.DictReader(io.StringIO(summary[summary.index("output_file"):]), delimiter="\t"))
@@ -135,13 +138,23 @@ def test_a_rerun_of_every_rule_gives_identical_bytes(ci_results, tmp_path):
     shutil.copytree(launch / "results", again / "results")  # copy2: the inputs keep their times, so stay done
     for f in chosen.values():
         (again / f).unlink()
-    proc = snakemake(again, "--configfile", str(CI_CONFIG), "--cores", "2", *chosen.values())
+    proc = snakemake(again, "--configfile", str(CI_CONFIG), "--cores", "2", *chosen.values(),
+                     extra_env={taskserver.ADDRESS_VARIABLE: "off"})
     log = proc.stdout + proc.stderr
     assert f"{len(chosen)} of {len(chosen)} steps (100%) done" in log, log[-3000:]  # those jobs, nothing else
 
     differ = [str(f) for f in _compared_outputs(ci_results)
               if (ci_results / f).read_bytes() != (again / "results" / f).read_bytes()]
     assert not differ, f"not byte-identical when rerun: {differ}"
+
+
+def test_every_job_of_a_local_run_is_forked_by_the_task_server(ci_results):
+    """Issue 22: a local run pays its imports once (bounce.pipeline.taskserver); each job's log says how it started."""
+    logs = sorted((ci_results / "logs").rglob("*.log"))
+    cpu_lines = {log: [line for line in log.read_text().splitlines() if line.startswith("cpu: ")] for log in logs}
+    assert len(cpu_lines) > 50 and all(cpu_lines.values())
+    afresh = [str(log.relative_to(ci_results)) for log, lines in cpu_lines.items() if taskserver.SERVED not in lines[-1]]
+    assert not afresh, afresh
 
 
 #: a time in seconds written as text: "3.49 ms", "2 seconds", "1.5 s CPU", "CPU in process seconds"

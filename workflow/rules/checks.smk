@@ -28,7 +28,7 @@ rule check_experiment:
         name="|".join(re.escape(n) for n in CHECKS),
         experiment="[a-z0-9][a-z0-9-]*",
     shell:
-        "python -m bounce.pipeline.tasks check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" check-experiment --name {wildcards.name} --experiment {wildcards.experiment} "
         "--spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
@@ -54,7 +54,7 @@ rule check:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in CHECKS if n not in FIGURELESS),
     shell:
-        "python -m bounce.pipeline.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
 
 
@@ -76,7 +76,7 @@ rule check_without_figure:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in FIGURELESS) or "(?!)",
     shell:
-        "python -m bounce.pipeline.tasks check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" check --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.nc} > {log} 2>&1"
 
 
@@ -107,5 +107,5 @@ rule report:
     benchmark:
         "results/timing/report.tsv"
     shell:
-        "python -m bounce.pipeline.tasks report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.article} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" report --spec {params.spec:q} --inputs {input.nc} --out {output.md} {output.article} "
         "> {log} 2>&1"

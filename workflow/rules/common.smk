@@ -4,8 +4,21 @@ so that no name is listed twice."""
 
 from bounce.paths import dataset, figure_file, gas_scene_file, sticky_dataset
 from bounce.pipeline.catalogue import figure_table, pipeline_figures
+from bounce.pipeline import taskserver
 from bounce.pipeline.config import report_choices
 from bounce.studies import study_inputs, study_slices
+
+
+# The jobs run a task of bounce.pipeline.tasks through its client, a script of the standard library
+# (bounce.pipeline.taskserver): forked by the run's task server when there is one, else started afresh.
+# Its path is handed to the jobs in the environment (a shell variable in the commands: snakemake's lint
+# rightly wants a command's {...} names to be the rule's own, and a path in params would rerun every job
+# when the checkout moves).
+os.environ["BOUNCE_TASK_CLIENT"] = str(Path(taskserver.__file__))
+
+
+envvars:
+    "BOUNCE_TASK_CLIENT",
 
 
 def as_json(obj):

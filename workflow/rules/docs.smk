@@ -17,7 +17,7 @@ rule thumbnails:
     log:
         "results/logs/docs/thumbnails.log",
     shell:
-        "python -m bounce.pipeline.tasks thumbnails --inputs {input} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" thumbnails --inputs {input} --out {output} > {log} 2>&1"
 
 
 rule readme:
@@ -32,4 +32,4 @@ rule readme:
     log:
         "results/logs/docs/readme.log",
     shell:
-        "python -m bounce.pipeline.tasks readme --inputs results --out README.md > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" readme --inputs results --out README.md > {log} 2>&1"

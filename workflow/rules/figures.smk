@@ -31,5 +31,5 @@ rule figure:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in FIGURES),
     shell:
-        "python -m bounce.pipeline.tasks figure --name {wildcards.name} --spec {params.spec:q} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" figure --name {wildcards.name} --spec {params.spec:q} "
         "--inputs {input} --out {output.png} {output.pdf} > {log} 2>&1"

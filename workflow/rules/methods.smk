@@ -23,5 +23,5 @@ rule study:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in STUDIES),
     shell:
-        "python -m bounce.pipeline.tasks study --name {wildcards.name} --spec {params.spec:q} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" study --name {wildcards.name} --spec {params.spec:q} "
         "--out {output.nc} {output.timing} {output.png} {output.pdf} > {log} 2>&1"

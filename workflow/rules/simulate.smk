@@ -17,7 +17,7 @@ rule simulate:
     wildcard_constraints:
         scene="|".join(re.escape(s) for s in SCENES),
     shell:
-        "python -m bounce.pipeline.tasks scene --name {wildcards.scene} --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" scene --name {wildcards.scene} --spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
 rule simulate_gas:
@@ -36,4 +36,4 @@ rule simulate_gas:
     wildcard_constraints:
         gas_scene="|".join(re.escape(s) for s in GAS_SCENES) or "^$",
     shell:
-        "python -m bounce.pipeline.tasks gas-scene --name {wildcards.gas_scene} --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" gas-scene --name {wildcards.gas_scene} --spec {params.spec:q} --out {output} > {log} 2>&1"

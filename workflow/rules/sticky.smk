@@ -18,7 +18,7 @@ rule sticky_runs:
     benchmark:
         "results/timing/sticky/runs.tsv"
     shell:
-        "python -m bounce.pipeline.tasks sticky-runs --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" sticky-runs --spec {params.spec:q} --out {output} > {log} 2>&1"
 
 
 rule sticky_convergence:
@@ -37,7 +37,7 @@ rule sticky_convergence:
     benchmark:
         "results/timing/sticky/convergence.tsv"
     shell:
-        "python -m bounce.pipeline.tasks sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" sticky-convergence --spec {params.spec:q} --inputs {input} --out {output} > {log} 2>&1"
 
 
 rule sticky_inference:
@@ -54,4 +54,4 @@ rule sticky_inference:
     benchmark:
         "results/timing/sticky/inference.tsv"
     shell:
-        "python -m bounce.pipeline.tasks sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"
+        "python -I \"$BOUNCE_TASK_CLIENT\" sticky-inference --spec {params.spec:q} --out {output} > {log} 2>&1"

@@ -34,9 +34,9 @@ rule sweep_shard:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
         shard=r"\d+",
         shards=r"\d+",
-    shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "  # parallel over items, not in BLAS
-        "python -m bounce.pipeline.tasks sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
+    shell:  # parallel over items, not in BLAS: one thread per worker (snakemake's one-thread environment: the task server's)
+        "OMP_NUM_THREADS=1 GOTO_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 VECLIB_MAXIMUM_THREADS=1 "
+        "NUMEXPR_NUM_THREADS=1 python -I \"$BOUNCE_TASK_CLIENT\" sweep-shard --name {wildcards.name} --spec {params.spec:q} --shard {wildcards.shard} "
         "--workers {threads} --out {output} > {log} 2>&1"
 
 
@@ -61,7 +61,7 @@ rule sweep_gather:
     wildcard_constraints:
         name="|".join(re.escape(n) for n in SWEEPS) or "^$",
     shell:
-        "python -m bounce.pipeline.tasks sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
+        "python -I \"$BOUNCE_TASK_CLIENT\" sweep-gather --name {wildcards.name} --spec {params.spec:q} --inputs {input} "
         "--out {output.nc} {output.png} {output.pdf} > {log} 2>&1"
 
 

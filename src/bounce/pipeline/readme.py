@@ -10,7 +10,8 @@ between the markers ``<!-- numbers:begin -->`` and ``<!-- numbers:end -->`` from
   the best accuracy each method reached and its CPU time per flight against the exact solver's,
   measured in the same run;
 * ``results/timing/pipeline.json`` (``benchmarks/bench_pipeline.py``): wall time, cores and load;
-  ``results/timing/**/*.tsv``: the CPU time of every job (Snakemake benchmark files);
+  ``results/timing/**/*.tsv``: the wall time of every job (Snakemake benchmark files; the CPU of a job is the last
+  line of its log, ``results/logs/**.log``);
 * ``results/timing/bench-simulator.json`` (``benchmarks/bench_simulator.py --json ...``) when present.
 
 Every line names the file it comes from; what a run did not produce is said, never guessed.

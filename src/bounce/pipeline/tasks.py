@@ -161,6 +161,10 @@ def _thumbnails(args) -> None:
         thumbnail(src, dst)
 
 
+#: how this process started, for its cpu: line: afresh (""), or forked by the run's fork server
+#: (bounce.pipeline.taskserver sets it), whose imports it does not count
+STARTED_BY = ""
+
 TASKS = {
     "scene": _scene,
     "gas-scene": _gas_scene,
@@ -194,8 +198,8 @@ def main(argv=None) -> int:
     # the job's exact CPU, last line of its log: Snakemake's benchmark file samples it (every 30 s after ~15 s of
     # wall time, keeping the last sample) and undercounts long jobs
     own, workers = (resource.getrusage(who) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
-    print(f"cpu: {own.ru_utime + own.ru_stime:.2f} s in this process, {workers.ru_utime + workers.ru_stime:.2f} s in "
-          f"its worker processes", file=sys.stderr)
+    print(f"cpu: {own.ru_utime + own.ru_stime:.2f} s in this process{STARTED_BY}, {workers.ru_utime + workers.ru_stime:.2f} "
+          f"s in its worker processes", file=sys.stderr)
     return 0
 
 

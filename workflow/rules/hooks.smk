@@ -1,10 +1,16 @@
-"""Running through a cluster executor (workflow/profiles/slurm): what the run needs beyond the executor's
-defaults.  These hooks run only in the snakemake the user started (never in the jobs), and do nothing
-for a local run (`--cores N`)."""
+"""The run's hooks, which run only in the snakemake the user started (never in the jobs).
 
+A local run (`--cores N`) starts the jobs' fork server (bounce.pipeline.taskserver: each job's imports paid
+once per run) and stops it at exit.  A run through a cluster executor (workflow/profiles/slurm) gets what it
+needs beyond the executor's defaults: SIGTERM cancels its jobs, the profile's no-account setting holds, and
+an interrupted run leaves no job queued."""
+
+import atexit
 import getpass
 import signal
 import subprocess
+
+from bounce.pipeline import taskserver
 
 
 def _slurm_executor():
@@ -14,7 +20,9 @@ def _slurm_executor():
 
 
 onstart:
-    if not workflow.local_exec:
+    if workflow.local_exec:
+        atexit.register(taskserver.stop, taskserver.start())
+    else:
         # SIGTERM (`kill`, a batch system or CI stopping the run) does what Ctrl-C does: cancel every job
         # this run submitted, queued or running, and stop.  Snakemake's own SIGTERM handler waits for all
         # of them, and on a cluster the queued ones may wait for hours; a job cut off is rerun next time
