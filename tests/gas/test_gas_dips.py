@@ -90,3 +90,22 @@ def test_the_pending_bound_precedes_the_dip(case):
     assert 0.0 < bound <= tau, (bound, tau)
     found = simulate_gas(p, state, max_events=1).t[0]
     assert _lazy_key(0.0, bound) < found, (bound, found)
+
+
+@settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(dips())
+def test_the_pending_bound_after_a_contact_precedes_the_next(case):
+    """Right after the dip's contact (gap 0, separating) the bound of the pair's next prediction (the march's
+    first step from the contact) precedes the pair's next contact, when the next event is that contact."""
+    p, state, _, _, _ = case
+    run = GasRun(p, state, math.inf, 0)
+    run.step(1)
+    t1 = float(run.clock[0])
+    x0, w, sd, s0, noise = _pair_gap(run.g, 0, 1, False, ELL, 0.0)
+    assert abs(x0) <= noise and w > 0.0
+    t_start, t_limit, _ = _pair_limits(0.0, w, sd, s0, math.inf)
+    bound = _contact_lower_bound(0.0, w, sd, s0, t_start, t_limit, p.mu)
+    assert bound > 0.0
+    rec, k, _ = run.step(1)
+    assume(k == 1 and rec.pair[0] == 0)  # else the seam's event changed the grains first
+    assert rec.t[0] - t1 >= bound * (1.0 - 1e-12), (rec.t[0] - t1, bound)

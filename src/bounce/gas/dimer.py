@@ -80,31 +80,32 @@ the impact rule uses as the single ball's loop does (always, for one grain); for
 parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
 the grains' own evaluation would compute, without computing them again.
 
-Lazy predictions.  A pair with a known lower bound > 0 of its contact time (:func:`_contact_lower_bound`)
-may be left unsearched when it is predicted: its slot keeps the search's inputs (the gap's state at the
-origin, its rounding, the window and whether a horizon proves no contact) and is queued *pending* at a
-key strictly before origin + bound (:func:`_lazy_key`: the float sum lowered by 4 eps of itself, more
-than the rounding of the double-double keys).  The bound is the window's start when it is > 0 (the gap
-is proved positive before it, above), always deferred; else, from a gap x0 > 0, the first step of the
-search's march (:func:`bounce.exact.flight.certified_step` from the origin: the root finder's
-curvature bounds prove the gap positive over it), deferred only when it ends after the earlier of the
-two adjacent slots' keys, so that a neighbour's event most likely predicts the slot again before its
-bound comes (a pending slot that reaches the top costs one heap update more than an eager search:
-deferring every first step gained as much at N = 1e3 but nothing measurable at N = 1e5 on the ring of
-benchmarks/bench_gas.py).  The
-true contact comes after the bound; the computed one may precede it by its rounding (a Newton polish
-from a point whose gap rounded below zero, a tangential minimum within rounding).  When a pending slot
-reaches the top of the heap its deferred search runs (the very search, with the very inputs, an eager
-prediction would have run at the origin: a pure function of them, so the same bits) and the slot is
-requeued at its true key before anything fires.  Every other key follows the pending key, so the true
-key, if before it, comes first too; the events fired since the origin are those whose keys preceded
-the pending key, in order, so the engine fires the eager engine's events in the eager engine's order
-(:func:`bounce.gas.queue.before`) as long as the true key does not precede the last event fired: that
-is checked, and a result before it (a contact's rounding spanning a neighbour's event: never seen)
-stops the run as ``root_finder_failed`` rather than fire out of order (at a call's first event the last
-event's slot is unknown: an exact tie with its time stops it too).  So the records are the eager
-engine's, and no contact is skipped (the contract above holds per search).  Most pending slots are
-re-predicted (a neighbour's event changes a grain) before their bound comes, and their search is
+Lazy predictions.  A pair with a known lower bound > 0 of its contact time
+(:func:`_contact_lower_bound`) may be left unsearched when it is predicted: its slot keeps the search's
+inputs (the gap's state at the origin, its rounding, the window and whether a horizon proves no contact)
+and is queued *pending* at a key strictly before origin + bound (:func:`_lazy_key`: the float sum
+lowered by 4 eps of itself, more than the rounding of the double-double keys).  The bound is the
+window's start when it is > 0 (the gap is proved positive before it, above), always deferred; else, from
+a gap x0 > 0 or one that opens (x0 = 0, gap' > 0: a pair right after its contact), the first step of the
+search's march (:func:`bounce.exact.flight.certified_step` from the origin: the root finder's curvature
+bounds prove the gap positive over it), deferred only when it ends after the earlier of the two adjacent
+slots' keys (after a pair's contact its neighbours are predicted first, so that their new keys are
+known), so that a neighbour's event most likely predicts the slot again before its bound comes (a
+pending slot that reaches the top costs one heap update more than an eager search: deferring every first
+step gained as much at N = 1e3 but nothing measurable at N = 1e5 on the ring of
+benchmarks/bench_gas.py).  The true contact comes after the bound; the computed one may precede it by
+its rounding (a Newton polish from a point whose gap rounded below zero, a tangential minimum within
+rounding).  When a pending slot reaches the top of the heap its deferred search runs (the very search,
+with the very inputs, an eager prediction would have run at the origin: a pure function of them, so the
+same bits) and the slot is requeued at its true key before anything fires.  Every other key follows the
+pending key, so the true key, if before it, comes first too; the events fired since the origin are those
+whose keys preceded the pending key, in order, so the engine fires the eager engine's events in the
+eager engine's order (:func:`bounce.gas.queue.before`) as long as the true key does not precede the last
+event fired: that is checked, and a result before it (a contact's rounding spanning a neighbour's event:
+never seen) stops the run as ``root_finder_failed`` rather than fire out of order (at a call's first
+event the last event's slot is unknown: an exact tie with its time stops it too).  So the records are
+the eager engine's, and no contact is skipped (the contract above holds per search).  Most pending slots
+are re-predicted (a neighbour's event changes a grain) before their bound comes, and their search is
 never run; a failed search is found when its slot reaches the top.
 
 Call boundaries.  A numba call increments and decrements the reference count of every array it
@@ -269,11 +270,12 @@ def _pair_limits(x0, u, a, eta, room):
 
 @njit(cache=True, inline="always")
 def _contact_lower_bound(x0, u, a, eta, t_start, t_limit, mu):
-    """A time before which a pair's search (window from ``t_start`` to ``t_limit``) finds no contact, 0 if none
-    is known: the window's start, or from a start at 0 with a gap x0 > 0, the first step of the march
-    (:func:`bounce.exact.flight.certified_step` from the gap's state at the origin, capped at ``t_limit``),
-    in which :func:`~bounce.exact.flight.first_contact` proves the gap has no root."""
-    if t_start > 0.0 or not x0 > 0.0:
+    """A time before which a pair's search (window from ``t_start`` to ``t_limit``) finds no contact (but for its
+    rounding), 0 if none is known: the window's start, or from a start at 0 with a gap x0 > 0 or x0 = 0 opening
+    (u > 0), the first step of the march (:func:`bounce.exact.flight.certified_step` from the gap's state at the
+    origin, capped at ``t_limit``), over which the curvature bounds of :func:`~bounce.exact.flight.first_contact`
+    prove the gap positive."""
+    if t_start > 0.0 or not (x0 > 0.0 or u > 0.0):
         return t_start
     z2, B, M3 = curvature_bounds(eta, a, 0.0, mu)
     step = min(certified_step(x0, u, -z2, B, M3, 0.0), t_limit)
@@ -389,8 +391,9 @@ def _pair_gap(g, i, j, seam, ell, gamma):
 
 
 @njit(cache=True, _nrt=False)
-def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work):
-    """Predict slot s from the grains' states (all involved grains at the same time)."""
+def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, stale):
+    """Predict slot s from the grains' states (all involved grains at the same time); slot ``stale`` (-1: none)
+    is about to be predicted again, its key is not a neighbour's next event (:func:`_predict`'s ``t_next``)."""
     mu = params[P_MU]
     i, j, seam = slot_grains(s, n, geometry)
     if i < 0:  # the floor
@@ -405,7 +408,8 @@ def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi
         x0 = 0.0
     window = 8.0 * EPS * (abs(s0) + 2.0 * mu * abs(sd))
     sb, sa = below_slot(i, n, geometry), above_slot(j, n, geometry)
-    t_next = min(khi[sb] if sb != s else math.inf, khi[sa] if sa >= 0 and sa != s else math.inf)
+    t_next = min(khi[sb] if sb != s and sb != stale else math.inf,
+                 khi[sa] if sa >= 0 and sa != s and sa != stale else math.inf)
     _predict(s, x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), g[i, G_TH], g[i, G_TL], t_max, sl, heap, pos, khi, klo, params, coefs,
              work, t_next)
 
@@ -417,7 +421,7 @@ def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos,
     khi[:] = math.inf
     klo[:] = 0.0
     for s in range(n):
-        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work)
+        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, -1)
     heapify(heap, pos, khi, klo)
 
 
@@ -532,7 +536,7 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             if n > 1:
                 _bring(g, 1, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(0, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, -1)
             bad = 0 if _overlap(g, 0, gamma) else -1
         else:
             # ---------------------------------------------------------------- pair (i, j)
@@ -570,22 +574,24 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             rec_kind[rec] = kind
             rec_pair[rec] = s
             rec_speed[rec] = max(-w, 0.0)
-            if window < 0.0:
-                update(s, math.inf, 0.0, heap, pos, khi, klo)
-            else:
-                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos,
-                         khi, klo, params, coefs, work, math.inf)
+            # the neighbours first (their keys are s's next re-predictions), s's own key is stale meanwhile
             sb = below_slot(i, n, geometry)
             if sb != s:
                 if not (geometry == COLUMN and i == 0):
                     _bring(g, i - 1 if i > 0 else n - 1, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(sb, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, s)
             sa = above_slot(j, n, geometry)
             if sa >= 0 and sa != s and sa != sb:
                 _bring(g, j + 1 if j + 1 < n else 0, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(sa, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, s)
+            if window < 0.0:
+                update(s, math.inf, 0.0, heap, pos, khi, klo)
+            else:
+                t_next = min(khi[sb] if sb != s else math.inf, khi[sa] if sa >= 0 and sa != s else math.inf)
+                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos,
+                         khi, klo, params, coefs, work, t_next)
             bad = i if _overlap(g, i, gamma) else (j if _overlap(g, j, gamma) else -1)
         clock[K_HI], clock[K_LO] = t_hi, t_lo
         last = s
