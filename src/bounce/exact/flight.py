@@ -153,9 +153,10 @@ def curvature_bounds(xi0, a, g, mu):
 
 @njit(cache=True, inline="always")
 def certified_step(x, v, A, B, M3, s):
-    """The march's step from a point with x > 0, x' = v, x'' = A, after a step s (0 at the start): the larger
-    of the safe steps of the global bound (x'' >= -B) and of the local one on a window h (x'' >= A - M3 h),
-    h twice the last step, the Newton distance x/|v| or the global step.  x has no root within the step."""
+    """The march's step from a point with x > 0 (or x = 0 and x' > 0), x' = v, x'' = A, after a step s (0 at the
+    start): the larger of the safe steps of the global bound (x'' >= -B) and of the local one on a window h
+    (x'' >= A - M3 h), h twice the last step, the Newton distance x/|v| or the global step.  x has no root
+    within the step (after its start)."""
     # window of the local bound: twice the last step or the Newton distance
     h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
     s = safe_step(x, v, B)
