@@ -58,7 +58,9 @@ from numba import njit
 from bounce.exact.flight import EPS
 from bounce.exact.short_flight import MAX_DEGREE
 from bounce.gas import GasParameters, GasRun, GasState, RigidParameters, RigidState
-from bounce.gas.dimer import G_A, G_ETA, G_U, G_X, _lazy_key, _pair_gap, _pair_limits, _search, grain_at
+from bounce.gas.dimer import (
+    G_A, G_ETA, G_U, G_X, _contact_lower_bound, _lazy_key, _pair_gap, _pair_limits, _search, grain_at,
+)
 from bounce.gas.queue import add_time, heapify, update
 
 MU = 0.05
@@ -78,8 +80,9 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
     """The three predictions of every recorded pair event from the states of its four grains (i-1, i, j, j+1)
     just after it, positions unwrapped (local[e, k] = x, x', xi', eta): the fired pair (i, j) from its
     contact (gap 0, velocity the approach speed), its two neighbours from the grains' states.  Each
-    computes its window (its start into ``starts``) and runs its search where ``runs`` says the engine
-    does (:func:`engine_runs`); the keys into keys_* (for the queue replay: a search not run leaves the
+    computes its window and the lower bound it may be queued pending at (into ``starts``: the window's start or
+    the march's first step, bounce.gas.dimer._contact_lower_bound) and runs its search where ``runs`` says the
+    engine does (:func:`engine_runs`); the keys into keys_* (for the queue replay: a search not run leaves the
     lazy key of bounce.gas.dimer._lazy_key)."""
     work = np.empty(MAX_DEGREE + 2)
     g = np.zeros((4, 6))
@@ -97,7 +100,8 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
                 if x0 <= noise:
                     x0 = 0.0
             t_start, t_limit, proves = _pair_limits(x0, w, sd, s0, math.inf)
-            starts[e, which] = t_start
+            bound = _contact_lower_bound(x0, w, sd, s0, t_start, t_limit, params[0])
+            starts[e, which] = bound
             keys_slot[m] = slots[e, which]
             if runs[e, which]:
                 window = 8.0 * EPS * (abs(s0) + 2.0 * params[0] * abs(sd))
@@ -105,7 +109,7 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
                                                               t_start, t_limit, params, coefs, work)
                 k_hi, k_lo = add_time(times[e], 0.0, tau if status == 0 else math.inf)
             else:
-                k_hi, k_lo = _lazy_key(times[e], t_start), 0.0
+                k_hi, k_lo = _lazy_key(times[e], bound), 0.0
             keys_hi[m] = k_hi
             keys_lo[m] = k_lo
             m += 1
@@ -113,9 +117,11 @@ def predictions(local, speeds, params, coefs, keys_slot, keys_hi, keys_lo, times
 
 
 def engine_runs(starts, slots, times):
-    """Which of the recorded predictions the lazy engine searches: all but a pending one (window start > 0)
-    whose slot is predicted again (by a later event) before its start comes (bounce.gas.dimer, "Lazy
-    predictions"; those at the end of the stretch count as searched)."""
+    """Which of the recorded predictions the lazy engine searches: all but a pending one (lower bound > 0)
+    whose slot is predicted again (by a later event) before its bound comes (bounce.gas.dimer, "Lazy
+    predictions"; those at the end of the stretch count as searched).  The engine also searches at once a
+    first-step bound that ends before both neighbours' keys (not known here): such a slot is predicted again
+    before its bound only if a neighbour's key moves earlier first, so the count is the engine's to that."""
     runs = np.ones(starts.shape, dtype=np.bool_)
     following = {}  # slot -> time of its next prediction, filled backwards
     for e in range(starts.shape[0] - 1, -1, -1):

@@ -7,7 +7,8 @@ dip, crossing zero at about T - sqrt(2 delta / A).  The state a time T earlier, 
 the start.  A draw is kept when the reference, from those doubles, finds its first contact inside the
 dip and the dip is 64 times deeper than the gap's rounding level (8 eps of the positions).  The
 engine's first event must be that contact: not the seam, not a later one (a skipped dip), at the
-reference's time to 1e-12 relative plus the floor of tests/gas/test_gas_reference.py.
+reference's time to 1e-12 relative plus the floor of tests/gas/test_gas_reference.py; and the lower bound
+the engine may queue the pair's prediction at (pending, its search deferred) must precede that contact.
 """
 
 from __future__ import annotations
@@ -20,7 +21,8 @@ from hypothesis import strategies as st
 from mpmath import mp, mpf
 
 import gas_reference as R
-from bounce.gas import GasParameters, GasState, simulate_gas
+from bounce.gas import GasParameters, GasRun, GasState, simulate_gas
+from bounce.gas.dimer import _contact_lower_bound, _lazy_key, _pair_gap, _pair_limits
 
 EPS = 2.0**-52
 ELL = 40.0
@@ -72,3 +74,38 @@ def test_shallow_dips_between_grains_are_not_skipped(case):
     x = state.psi - state.xi
     floor = 8 * EPS * (2 * np.max(np.abs(x)) + 4.0) / speed
     assert abs(res.t[0] - tau) <= 1e-12 * tau + floor, (res.t[0], tau)
+
+
+@settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(dips())
+def test_the_pending_bound_precedes_the_dip(case):
+    """The lower bound a pair may be queued pending at (the window's start, or the march's first certified
+    step: bounce.gas.dimer._contact_lower_bound) lies before the reference's contact in the dip, and its
+    lazy key before the engine's."""
+    p, state, tau, _, _ = case
+    run = GasRun(p, state, math.inf, 0)
+    x0, w, sd, s0, _ = _pair_gap(run.g, 0, 1, False, ELL, 0.0)
+    t_start, t_limit, _ = _pair_limits(x0, w, sd, s0, math.inf)
+    bound = _contact_lower_bound(x0, w, sd, s0, t_start, t_limit, p.mu)
+    assert 0.0 < bound <= tau, (bound, tau)
+    found = simulate_gas(p, state, max_events=1).t[0]
+    assert _lazy_key(0.0, bound) < found, (bound, found)
+
+
+@settings(deadline=None, max_examples=30, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(dips())
+def test_the_pending_bound_after_a_contact_precedes_the_next(case):
+    """Right after the dip's contact (gap 0, separating) the bound of the pair's next prediction (the march's
+    first step from the contact) precedes the pair's next contact, when the next event is that contact."""
+    p, state, _, _, _ = case
+    run = GasRun(p, state, math.inf, 0)
+    run.step(1)
+    t1 = float(run.clock[0])
+    x0, w, sd, s0, noise = _pair_gap(run.g, 0, 1, False, ELL, 0.0)
+    assert abs(x0) <= noise and w > 0.0
+    t_start, t_limit, _ = _pair_limits(0.0, w, sd, s0, math.inf)
+    bound = _contact_lower_bound(0.0, w, sd, s0, t_start, t_limit, p.mu)
+    assert bound > 0.0
+    rec, k, _ = run.step(1)
+    assume(k == 1 and rec.pair[0] == 0)  # else the seam's event changed the grains first
+    assert rec.t[0] - t1 >= bound * (1.0 - 1e-12), (rec.t[0] - t1, bound)

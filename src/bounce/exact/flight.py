@@ -38,7 +38,9 @@ root the bound is a parabola tangent to x, so the march converges quadratically
 far below B (near sticky onsets, chattering) the global bound would crawl, so
 each step also tries the local bound x'' >= x''(t_k) - M3 h on a window
 [t_k, t_k + h] (M3 bounds |xi'''| as M2 bounds |xi''|), h doubling from the
-last step, and takes the larger of the two certified steps.  When a step passes a
+last step, and takes the larger of the two certified steps (:func:`certified_step`; the
+gas engine takes the first step from a pair's origin as a lower bound of the pair's contact
+time, :mod:`bounce.gas.dimer`).  When a step passes a
 local minimum of x (x' turns from negative to non-negative), the minimum is located
 and, if it lies within rounding of the floor, reported as a (tangential) contact.  It stops when
 x is within rounding of zero (|x| <= 4 eps scale) and a last Newton step
@@ -141,6 +143,30 @@ def safe_step(x, v, B):
     return math.inf
 
 
+@njit(cache=True, inline="always")
+def curvature_bounds(xi0, a, g, mu):
+    """(xi''(0), B, M3) of a flight from (xi0, a = xi'(0)): |x''| <= B and |xi'''| <= M3 for every t >= 0
+    (the energy bounds of the module docstring, with their margin B_MARGIN)."""
+    z1, z2, z3, z4 = xi_derivatives(xi0, a, mu)
+    return z2, (g + derivative_bound(z1, z2, z3)) * B_MARGIN, derivative_bound(z2, z3, z4) * B_MARGIN
+
+
+@njit(cache=True, inline="always")
+def certified_step(x, v, A, B, M3, s):
+    """The march's step from a point with x > 0 (or x = 0 and x' > 0), x' = v, x'' = A, after a step s (0 at the
+    start): the larger of the safe steps of the global bound (x'' >= -B) and of the local one on a window h
+    (x'' >= A - M3 h), h twice the last step, the Newton distance x/|v| or the global step.  x has no root
+    within the step (after its start)."""
+    # window of the local bound: twice the last step or the Newton distance
+    h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
+    s = safe_step(x, v, B)
+    # local bound on [t, t + h]: tighter where |x''| << B
+    h = max(h, 2.0 * s)
+    if h < math.inf:  # the Newton distance x/|v| of a tiny speed may overflow: global bound only
+        s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
+    return s
+
+
 @njit(cache=True)
 def _envelope_below(level, x, v):
     """Bounded mode: xi(t) = level - x, xi'(t) = -v; True if sqrt(xi^2 + xi'^2) <= level,
@@ -191,9 +217,7 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
     """
     mu = params[P_MU]
     xi0 = eta - g
-    z1, z2, z3, z4 = xi_derivatives(xi0, a, mu)
-    B = (g + derivative_bound(z1, z2, z3)) * B_MARGIN
-    M3 = derivative_bound(z2, z3, z4) * B_MARGIN
+    z2, B, M3 = curvature_bounds(xi0, a, g, mu)
     bounded = g == 0.0 and u + a == 0.0
     level = x0 + eta  # bounded mode: contact needs xi(t) = x0 + xi(0)
     t = t_start
@@ -215,15 +239,8 @@ def first_contact(t_start, t_limit, x0, u, a, eta, g, params, coefs):
             return FAILED, t, v, scale, omc, tms, omsd, c, S, Sd, x
         if bounded and _envelope_below(level, x, v):
             return NEVER, t, v, scale, omc, tms, omsd, c, S, Sd, x
-        # window of the local bound: twice the last step or the Newton distance
-        h = 2.0 * max(s, x / -v if v < 0.0 else 0.0)
-        s = safe_step(x, v, B)
-        # local bound on [t, t + h]: x'' >= A - M3 h with A = x''(t) = -g - xi''(t); tighter
-        # where |x''| << B
-        A = -g - z2
-        h = max(h, 2.0 * s)
-        if h < math.inf:  # the Newton distance x/|v| of a tiny speed may overflow: global bound only
-            s = max(s, min(safe_step(x, v, max(0.0, M3 * h - A) * B_MARGIN), h))
+        A = -g - z2  # x''(t)
+        s = certified_step(x, v, A, B, M3, s)
         if t + s > t_limit:
             return HORIZON, t_limit, v, scale, omc, tms, omsd, c, S, Sd, x
         t_new = t + s

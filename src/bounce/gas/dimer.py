@@ -80,23 +80,33 @@ the impact rule uses as the single ball's loop does (always, for one grain); for
 parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
 the grains' own evaluation would compute, without computing them again.
 
-Lazy predictions.  A pair approaching with a search window that starts at start > 0 (the gap is
-proved positive before it, above) is not searched when it is predicted: its slot keeps the search's
-inputs (the gap's state at the origin, its rounding, the window and whether a horizon proves no
-contact) and is queued *pending* at a key strictly before origin + start (:func:`_lazy_key`: the
-float sum lowered by 4 eps of itself, more than the rounding of the double-double keys).  The search
-never returns a time before its start, so this key precedes the slot's true key.  Invariant: every
-key in the heap is the slot's true next-contact key or, for a pending slot, a key before it.  When a
-pending slot reaches the top of the heap its deferred search runs (the very search, with the very
-inputs, an eager prediction would have run at the origin: a pure function of them, so the same bits)
-and the slot is requeued at its true key before anything fires; an event fires only from the top,
-so only when its true key precedes every other slot's key and hence every other true key, in the
-order of :func:`bounce.gas.queue.before`: the events, their order and their records are those of the
-eager engine, and no contact is skipped (the contract above holds per search).  Most pending slots
-are re-predicted (a neighbour's event changes a grain) before their start comes, and their search is
-never run (the ring of benchmarks/bench_gas.py: a third of the root finder's evaluations).  A result
-before the pending key (excluded by the argument above) stops the run as ``root_finder_failed``
-rather than fire out of order; a failed search is found when its slot reaches the top.
+Lazy predictions.  A pair with a known lower bound > 0 of its contact time
+(:func:`_contact_lower_bound`) may be left unsearched when it is predicted: its slot keeps the search's
+inputs (the gap's state at the origin, its rounding, the window and whether a horizon proves no contact)
+and is queued *pending* at a key strictly before origin + bound (:func:`_lazy_key`: the float sum
+lowered by 4 eps of itself, more than the rounding of the double-double keys).  The bound is the
+window's start when it is > 0 (the gap is proved positive before it, above), always deferred; else, from
+a gap x0 > 0 or one that opens (x0 = 0, gap' > 0: a pair right after its contact), the first step of the
+search's march (:func:`bounce.exact.flight.certified_step` from the origin: the root finder's curvature
+bounds prove the gap positive over it), deferred only when it ends after the earlier of the two adjacent
+slots' keys (after a pair's contact its neighbours are predicted first, so that their new keys are
+known), so that a neighbour's event most likely predicts the slot again before its bound comes (a
+pending slot that reaches the top costs one heap update more than an eager search: deferring every first
+step gained as much at N = 1e3 but nothing measurable at N = 1e5 on the ring of
+benchmarks/bench_gas.py).  The true contact comes after the bound; the computed one may precede it by
+its rounding (a Newton polish from a point whose gap rounded below zero, a tangential minimum within
+rounding).  When a pending slot reaches the top of the heap its deferred search runs (the very search,
+with the very inputs, an eager prediction would have run at the origin: a pure function of them, so the
+same bits) and the slot is requeued at its true key before anything fires.  Every other key follows the
+pending key, so the true key, if before it, comes first too; the events fired since the origin are those
+whose keys preceded the pending key, in order, so the engine fires the eager engine's events in the
+eager engine's order (:func:`bounce.gas.queue.before`) as long as the true key does not precede the last
+event fired: that is checked, and a result before it (a contact's rounding spanning a neighbour's event:
+never seen) stops the run as ``root_finder_failed`` rather than fire out of order (at a call's first
+event the last event's slot is unknown: an exact tie with its time stops it too).  So the records are
+the eager engine's, and no contact is skipped (the contract above holds per search).  Most pending slots
+are re-predicted (a neighbour's event changes a grain) before their bound comes, and their search is
+never run; a failed search is found when its slot reaches the top.
 
 Call boundaries.  A numba call increments and decrements the reference count of every array it
 passes (atomic operations of the runtime, NRT), which cost about as much as a short evaluation.  So
@@ -119,7 +129,8 @@ from numba import njit
 
 from ..exact.events import STICKY_ONSET, _is_sticky_onset, _is_tangential, contact, rounding_level
 from ..exact.flight import (
-    EPS, FAILED, FOUND, HORIZON, NEVER, first_contact, flight_at, flight_spring, gap, liftoff_time, xi_derivatives,
+    EPS, FAILED, FOUND, HORIZON, NEVER, certified_step, curvature_bounds, first_contact, flight_at, flight_spring, gap,
+    liftoff_time, xi_derivatives,
 )
 from ..exact.oscillator import P_MU, P_RHO
 from ..exact.short_flight import HANDOVER, MAX_DEGREE, short_flight
@@ -258,6 +269,20 @@ def _pair_limits(x0, u, a, eta, room):
 
 
 @njit(cache=True, inline="always")
+def _contact_lower_bound(x0, u, a, eta, t_start, t_limit, mu):
+    """A time before which a pair's search (window from ``t_start`` to ``t_limit``) finds no contact (but for its
+    rounding), 0 if none is known: the window's start, or from a start at 0 with a gap x0 > 0 or x0 = 0 opening
+    (u > 0), the first step of the march (:func:`bounce.exact.flight.certified_step` from the gap's state at the
+    origin, capped at ``t_limit``), over which the curvature bounds of :func:`~bounce.exact.flight.first_contact`
+    prove the gap positive."""
+    if t_start > 0.0 or not (x0 > 0.0 or u > 0.0):
+        return t_start
+    z2, B, M3 = curvature_bounds(eta, a, 0.0, mu)
+    step = min(certified_step(x0, u, -z2, B, M3, 0.0), t_limit)
+    return step if step < math.inf else 0.0
+
+
+@njit(cache=True, inline="always")
 def _lazy_key(t_hi, t_start):
     """A key strictly before every key add_time(t_hi, t_lo, tau) with tau >= t_start > 0 (t_hi >= 0, |t_lo| <=
     ulp(t_hi)/2): fl(t_hi + t_start) lowered by 4 eps of itself, more than the rounding of both sums."""
@@ -266,18 +291,24 @@ def _lazy_key(t_hi, t_start):
 
 
 @njit(cache=True, _nrt=False)
-def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work):
-    """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair whose contact
-    cannot come before a start > 0 of its window is queued pending at that start (its search deferred,
-    :func:`_resolve_pending`); any other search is run now."""
+def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work,
+             t_next):
+    """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair with a lower bound
+    > 0 of its contact time is queued pending at it (its search deferred, :func:`_resolve_pending`) if the bound is
+    its window's start, or if it is the march's first step and ends after ``t_next`` (the earlier of the adjacent
+    slots' keys; inf: never); any other search is run now."""
     room = t_max - t_hi - t_lo
     t_start, t_limit, proves = 0.0, room, False
+    t_lower = 0.0
     if G == 0.0:
         t_start, t_limit, proves = _pair_limits(x0, u, a, eta, room)
+        t_lower = _contact_lower_bound(x0, u, a, eta, t_start, t_limit, params[P_MU])
+        if t_start == 0.0 and not t_hi + t_lower > t_next:
+            t_lower = 0.0  # a first step that ends before both neighbours' keys: searched now (module docstring)
     if G == 0.0 and t_limit == 0.0 and proves:
         sl[s, S_TYPE] = T_CONTACT
         k_hi, k_lo = math.inf, 0.0
-    elif G == 0.0 and t_start > 0.0:
+    elif G == 0.0 and t_lower > 0.0:
         sl[s, S_T0H] = t_hi
         sl[s, S_T0L] = t_lo
         sl[s, S_X0] = x0
@@ -290,7 +321,7 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
         sl[s, S_LIMIT] = t_limit
         sl[s, S_PROVES] = 1.0 if proves else 0.0
         sl[s, S_TYPE] = T_PENDING
-        k_hi, k_lo = _lazy_key(t_hi, t_start), 0.0
+        k_hi, k_lo = _lazy_key(t_hi, t_lower), 0.0
     else:
         k_hi, k_lo = _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl,
                                  params, coefs, work)
@@ -298,18 +329,18 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
 
 
 @njit(cache=True, _nrt=False)
-def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work, c_hi, c_lo, last):
     """Run pending slot s's deferred search (from its stored inputs: the search an eager prediction would have
-    run, bit for bit) and queue its result.  Returns False if the result precedes the lower bound it was
-    queued at (never expected: the bound is proved; the caller stops the run)."""
-    lazy_hi, lazy_lo = khi[s], klo[s]
+    run, bit for bit) and queue its result.  Returns False if the result precedes the last event fired, at
+    (c_hi, c_lo) from slot ``last`` (-1: fired before this call), in the order of the queue (module docstring:
+    never expected; the caller stops the run)."""
     k_hi, k_lo = _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW],
                              sl[s, S_SCALE0], sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H],
                              sl[s, S_T0L], t_max, sl, params, coefs, work)
     update(s, k_hi, k_lo, heap, pos, khi, klo)
     if sl[s, S_TYPE] != T_CONTACT:
         return True  # a failed search (or a sticky start): the run stops at the slot's origin
-    return k_hi > lazy_hi or (k_hi == lazy_hi and k_lo >= lazy_lo)
+    return k_hi > c_hi or (k_hi == c_hi and (k_lo > c_lo or (k_lo == c_lo and 0 <= last < s)))
 
 
 @njit(cache=True, inline="always")
@@ -360,8 +391,9 @@ def _pair_gap(g, i, j, seam, ell, gamma):
 
 
 @njit(cache=True, _nrt=False)
-def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work):
-    """Predict slot s from the grains' states (all involved grains at the same time)."""
+def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, stale):
+    """Predict slot s from the grains' states (all involved grains at the same time); slot ``stale`` (-1: none)
+    is about to be predicted again, its key is not a neighbour's next event (:func:`_predict`'s ``t_next``)."""
     mu = params[P_MU]
     i, j, seam = slot_grains(s, n, geometry)
     if i < 0:  # the floor
@@ -369,14 +401,17 @@ def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi
         a, eta = g[0, G_A], g[0, G_ETA]
         window = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
         _predict(s, x0, g[0, G_U], a, eta, gamma, window, 0.0, g[0, G_TH], g[0, G_TL], t_max, sl, heap, pos, khi, klo,
-                 params, coefs, work)
+                 params, coefs, work, math.inf)
         return
     x0, w, sd, s0, noise = _pair_gap(g, i, j, seam, ell, gamma)
     if x0 <= noise:
         x0 = 0.0
     window = 8.0 * EPS * (abs(s0) + 2.0 * mu * abs(sd))
+    sb, sa = below_slot(i, n, geometry), above_slot(j, n, geometry)
+    t_next = min(khi[sb] if sb != s and sb != stale else math.inf,
+                 khi[sa] if sa >= 0 and sa != s and sa != stale else math.inf)
     _predict(s, x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), g[i, G_TH], g[i, G_TL], t_max, sl, heap, pos, khi, klo, params, coefs,
-             work)
+             work, t_next)
 
 
 @njit(cache=True)
@@ -386,7 +421,7 @@ def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos,
     khi[:] = math.inf
     klo[:] = 0.0
     for s in range(n):
-        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work)
+        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, -1)
     heapify(heap, pos, khi, klo)
 
 
@@ -436,12 +471,14 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
     work = np.empty(MAX_DEGREE + 2)
     rec = 0
     snaps = 0
+    last = -1  # the slot of the last event fired in this call
     ctl[C_STOP] = STOP_EVENTS
     while rec < max_events:
         s = heap[0]
         if sl[s, S_TYPE] == T_PENDING:
             # a deferred search reached the top: run it, requeue, look again (no event fires before it)
-            if not _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work):
+            if not _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work, clock[K_HI], clock[K_LO],
+                                    last):
                 ctl[C_STOP] = STOP_FAILED
                 ctl[C_WHERE] = s
                 break
@@ -495,11 +532,11 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             rec_pair[rec] = FLOOR_PAIR
             rec_speed[rec] = max(-v, 0.0)
             _predict(s, 0.0, u1, a1, eta1, gamma, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params,
-                     coefs, work)
+                     coefs, work, math.inf)
             if n > 1:
                 _bring(g, 1, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(0, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, -1)
             bad = 0 if _overlap(g, 0, gamma) else -1
         else:
             # ---------------------------------------------------------------- pair (i, j)
@@ -537,24 +574,27 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             rec_kind[rec] = kind
             rec_pair[rec] = s
             rec_speed[rec] = max(-w, 0.0)
-            if window < 0.0:
-                update(s, math.inf, 0.0, heap, pos, khi, klo)
-            else:
-                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos,
-                         khi, klo, params, coefs, work)
+            # the neighbours first (their keys are s's next re-predictions), s's own key is stale meanwhile
             sb = below_slot(i, n, geometry)
             if sb != s:
                 if not (geometry == COLUMN and i == 0):
                     _bring(g, i - 1 if i > 0 else n - 1, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(sb, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, s)
             sa = above_slot(j, n, geometry)
             if sa >= 0 and sa != s and sa != sb:
                 _bring(g, j + 1 if j + 1 < n else 0, t_hi, t_lo, gamma, params, coefs)
                 _predict_from_state(sa, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
-                                    work)
+                                    work, s)
+            if window < 0.0:
+                update(s, math.inf, 0.0, heap, pos, khi, klo)
+            else:
+                t_next = min(khi[sb] if sb != s else math.inf, khi[sa] if sa >= 0 and sa != s else math.inf)
+                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos,
+                         khi, klo, params, coefs, work, t_next)
             bad = i if _overlap(g, i, gamma) else (j if _overlap(g, j, gamma) else -1)
         clock[K_HI], clock[K_LO] = t_hi, t_lo
+        last = s
         done = ctl[C_EVENTS]
         ctl[C_EVENTS] = done + 1
         rec += 1
