@@ -148,6 +148,7 @@ def test_a_rerun_of_every_rule_gives_identical_bytes(ci_results, tmp_path):
     assert not differ, f"not byte-identical when rerun: {differ}"
 
 
+@pytest.mark.slow
 def test_every_job_of_a_local_run_is_forked_by_the_task_server(ci_results):
     """Issue 22: a local run pays its imports once (bounce.pipeline.taskserver); each job's log says how it started."""
     logs = sorted((ci_results / "logs").rglob("*.log"))
