@@ -83,6 +83,7 @@ def test_a_job_in_another_environment_is_refused_and_runs_afresh(server, tmp_pat
     # NUMBA_OPT is read when numba is imported: the server's import would not honour the job's
     alone = client(server, scene_argv("alone.nc"), tmp_path, NUMBA_OPT="2")
     assert alone.returncode == 0 and taskserver.SERVED not in alone.stderr
+    assert "not served: its environment differs from the server's in NUMBA_OPT\n" in alone.stderr
     assert (tmp_path / "alone.nc").exists()
     # variables nothing reads before a job starts may differ
     served = client(server, scene_argv("served.nc"), tmp_path, TMPDIR=str(tmp_path), SHLVL="7")

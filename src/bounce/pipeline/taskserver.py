@@ -44,8 +44,9 @@ import sys
 #: the variable naming the server's socket (``off``: start none)
 ADDRESS_VARIABLE = "BOUNCE_TASK_SERVER"
 #: variables a job's environment may have of its own: nothing reads them before a job starts (the
-#: child applies them; tempfile's cached directory is reset so that the job's TMPDIR holds)
-PER_JOB = frozenset({"_", "SHLVL", "PWD", "OLDPWD", "TMPDIR", "TMP", "TEMP", "TEMPDIR"})
+#: child applies them; tempfile's cached directory is reset so that the job's TMPDIR holds).  The shell's
+#: bookkeeping includes its prompts: a non-interactive bash unsets an exported PS1 (a venv's `activate`)
+PER_JOB = frozenset({"_", "SHLVL", "PWD", "OLDPWD", "PS1", "PS2", "TMPDIR", "TMP", "TEMP", "TEMPDIR"})
 #: what snakemake sets in a one-thread job's environment (snakemake.shell), given to the server too
 ONE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS",
                                     "MKL_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")}
@@ -219,6 +220,10 @@ def serve(address: str) -> None:
                         continue
                     env = {k: v for k, v in request["env"].items() if k not in PER_JOB}
                     if env != own_env or len(fds) != 3:
+                        differ = sorted(k for k in set(env) | set(own_env) if env.get(k) != own_env.get(k))
+                        if len(fds) == 3 and differ:  # said in the job's log, which the fresh job then continues
+                            os.write(fds[2], f"bounce.pipeline.taskserver: started afresh, not served: its environment "
+                                             f"differs from the server's in {', '.join(differ)}\n".encode())
                         for fd in fds:
                             os.close(fd)
                         conn.sendall(_STATUS.pack(REFUSED))
