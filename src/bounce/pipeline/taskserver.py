@@ -109,10 +109,7 @@ def preload() -> None:
     """Import what the jobs import, initialise numba's compiler (a cached kernel's first call) and save a figure."""
     import importlib
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    for name in ("matplotlib.pyplot", "xarray", "netCDF4", "scipy.integrate", "scipy.optimize", "scipy.stats",
+    for name in ("bounce.figures.common", "xarray", "netCDF4", "scipy.integrate", "scipy.optimize", "scipy.stats",
                  "sympy", "bounce.pipeline.tasks", "bounce.io", "bounce.checks", "bounce.figures", "bounce.sweeps",
                  "bounce.studies", "bounce.methods"):
         importlib.import_module(name)
@@ -285,9 +282,7 @@ def start():
         return None  # switched off, or not Linux (pidfd_open: Linux >= 5.3)
     # a short path: a Unix socket's address has at most 107 bytes
     address = os.path.join(tempfile.mkdtemp(prefix="bounce-tasks-"), "socket")
-    env = dict(os.environ, **ONE_THREAD)
-    env.pop(ADDRESS_VARIABLE, None)
-    env[ADDRESS_VARIABLE] = address
+    env = dict(os.environ, **ONE_THREAD, **{ADDRESS_VARIABLE: address})
     process = subprocess.Popen([sys.executable, "-m", "bounce.pipeline.taskserver", "--serve", address], env=env,
                                stdout=subprocess.PIPE, stdin=subprocess.DEVNULL)
     if process.stdout.readline().strip() != b"ready":
