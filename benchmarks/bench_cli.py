@@ -10,12 +10,14 @@ netCDF-C's ``ncdump`` reads the file).
 With ``--startup``, the start-up instead (issue 22): wall, CPU and peak RSS of ``simulate --events 1``, and the
 same for probes that each import one layer more (bare interpreter, numpy, numba, numba with a cached kernel
 loaded, xarray, ...), so that the difference of two rows is what that layer costs and the first rows are floors
-no code of bounce can remove.  With ``--logs DIR`` (a finished run's ``results/logs``), the per-job-kind table of
-the exact ``cpu:`` lines of pipeline.tasks: the smallest job of a kind is an upper bound of its start-up.
+no code of bounce can remove.  With ``--logs DIR`` (a finished run's ``results/logs``; alone, or after the start-up
+table), the per-job-kind table of the exact ``cpu:`` lines of pipeline.tasks: the smallest job of a kind is an upper
+bound of its start-up, and a column gives the CPU the jobs spent saving figures.
 
     python benchmarks/bench_cli.py                       # 1e5 vs 2e6 events, 3 repeats
     python benchmarks/bench_cli.py --compression         # also the codec table
     python benchmarks/bench_cli.py --startup --repeats 7 --logs results/logs
+    python benchmarks/bench_cli.py --logs results/logs   # the table of a finished run only
 """
 
 from __future__ import annotations
@@ -116,26 +118,33 @@ def job_kind(log: Path, logs: Path) -> str:
     return parts[0] if len(parts) > 1 else log.stem
 
 
-#: a job's last log line (bounce.pipeline.tasks.main): its CPU, how it started, its workers' CPU
-CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process(.*?), ([\d.]+) s in its worker processes")
+#: a job's last log line (bounce.pipeline.tasks.main): its CPU, how it started, its workers' CPU, the part of its own
+#: CPU spent saving figures (bounce.figures.common.save; absent from the logs of runs before it was reported)
+CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process(.*?), ([\d.]+) s in its worker processes"
+                      r"(?:; ([\d.]+) s of it saving figures)?")
 
 
 def logs_table(logs: Path) -> None:
-    """Per job kind: jobs, smallest, median and total CPU of their ``cpu:`` lines (process + workers)."""
-    cpus, served = {}, 0
+    """Per job kind: jobs, smallest, median and total CPU of their ``cpu:`` lines (process + workers), and the total
+    spent saving figures (matplotlib: layout, drawing, fonts, PNG and PDF)."""
+    cpus, saving, served = {}, {}, 0
     for log in sorted(logs.rglob("*.log")):
         lines = [m for m in map(CPU_LINE.match, log.read_text(errors="replace").splitlines()) if m]
         if lines:
-            own, started_by, workers = lines[-1].groups()
-            cpus.setdefault(job_kind(log, logs), []).append(float(own) + float(workers))
+            own, started_by, workers, figures = lines[-1].groups()
+            kind = job_kind(log, logs)
+            cpus.setdefault(kind, []).append(float(own) + float(workers))
+            saving[kind] = saving.get(kind, 0.0) + float(figures or "nan")
             served += bool(started_by)
     print(f"job CPU from {logs} (cpu: lines; the smallest bounds the kind's start-up; {served} jobs forked by the "
           f"run's task server, whose imports they do not count)")
-    print(f"  {'kind':18} {'jobs':>5} {'min s':>7} {'median s':>9} {'total s':>8}")
+    print(f"  {'kind':18} {'jobs':>5} {'min s':>7} {'median s':>9} {'total s':>8} {'saving figures s':>17}")
     for kind, values in sorted(cpus.items()):
-        print(f"  {kind:18} {len(values):5d} {min(values):7.2f} {statistics.median(values):9.2f} {sum(values):8.1f}")
+        print(f"  {kind:18} {len(values):5d} {min(values):7.2f} {statistics.median(values):9.2f} {sum(values):8.1f} "
+              f"{saving[kind]:17.1f}")
     every = [v for values in cpus.values() for v in values]
-    print(f"  {'all':18} {len(every):5d} {min(every):7.2f} {statistics.median(every):9.2f} {sum(every):8.1f}")
+    print(f"  {'all':18} {len(every):5d} {min(every):7.2f} {statistics.median(every):9.2f} {sum(every):8.1f} "
+          f"{sum(saving.values()):17.1f}")
 
 
 def median_time(events: int, out: Path, repeats: int, extra=()) -> tuple[float, float]:
@@ -172,11 +181,13 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--compression", action="store_true", help="also compare the codecs")
     parser.add_argument("--startup", action="store_true", help="the start-up table instead (issue 22)")
-    parser.add_argument("--logs", type=Path, help="with --startup: a finished run's results/logs, CPU per job kind")
+    parser.add_argument("--logs", type=Path, help="a finished run's results/logs: CPU per job kind (alone, or after "
+                        "the --startup table)")
     args = parser.parse_args()
-    if args.startup:
-        with tempfile.TemporaryDirectory() as tmp:
-            startup_table(Path(tmp) / "run.nc", args.repeats)
+    if args.startup or args.logs:
+        if args.startup:
+            with tempfile.TemporaryDirectory() as tmp:
+                startup_table(Path(tmp) / "run.nc", args.repeats)
         if args.logs:
             logs_table(args.logs)
         return

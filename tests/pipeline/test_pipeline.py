@@ -158,6 +158,23 @@ def test_every_job_of_a_local_run_is_forked_by_the_task_server(ci_results):
     assert not afresh, afresh
 
 
+_CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process.*, [\d.]+ s in its worker processes; ([\d.]+) s of it saving "
+                       r"figures$")
+
+
+@pytest.mark.slow
+def test_every_job_reports_the_cpu_it_spent_saving_figures(ci_results):
+    """Issue 22: a job's last log line also gives the part of its CPU spent saving figures (after the timed studies the
+    pipeline's largest cost): within the process's CPU and positive for every figure job, zero for a simulation."""
+    by_folder = {}  # logs/<folder>/...: [(cpu, saving)]
+    for log in sorted((ci_results / "logs").rglob("*.log")):
+        match = _CPU_LINE.match(log.read_text().splitlines()[-1])
+        assert match, log
+        by_folder.setdefault(log.relative_to(ci_results / "logs").parts[0], []).append(tuple(map(float, match.groups())))
+    assert all(0.0 < saving <= cpu for cpu, saving in by_folder["figures"]), by_folder["figures"]
+    assert all(saving == 0.0 for _, saving in by_folder["simulate"]), by_folder["simulate"]
+
+
 #: a time in seconds written as text: "3.49 ms", "2 seconds", "1.5 s CPU", "CPU in process seconds"
 _SECONDS = re.compile(r"\d\s*(?:ms|seconds?)\b|\d\s*s\s+(?:CPU|wall)\b|CPU in")
 

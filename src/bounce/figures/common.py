@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import time
 import uuid
 from pathlib import Path
 
@@ -35,23 +36,33 @@ plt.rcParams.update({
 PDF_METADATA = {"CreationDate": None, "ModDate": None, "Producer": "bounce / matplotlib"}
 
 
+#: CPU seconds this process has spent in :func:`save` (layout, drawing, font subsetting, writing): a pipeline job
+#: reports it on its ``cpu:`` line (:func:`bounce.pipeline.tasks.main`)
+saving_cpu = 0.0
+
+
 def save(fig, outputs) -> None:
     """Save ``fig`` to every path in ``outputs`` (format from the suffix), each atomically.
 
     The temporary file is created by matplotlib like any other file (mode 0666 less the umask,
     as the netCDF files), not by ``mkstemp`` (0600), so figures are readable like the rest."""
-    for out in outputs:
-        out = Path(out)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        tmp = out.parent / f".{out.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{out.suffix}"
-        try:
-            meta = PDF_METADATA if out.suffix == ".pdf" else {"Software": "bounce / matplotlib"}
-            fig.savefig(tmp, metadata=meta, bbox_inches="tight")
-            os.replace(tmp, out)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-    plt.close(fig)
+    global saving_cpu
+    start = time.process_time()
+    try:
+        for out in outputs:
+            out = Path(out)
+            out.parent.mkdir(parents=True, exist_ok=True)
+            tmp = out.parent / f".{out.name}.{os.getpid()}.{uuid.uuid4().hex[:12]}{out.suffix}"
+            try:
+                meta = PDF_METADATA if out.suffix == ".pdf" else {"Software": "bounce / matplotlib"}
+                fig.savefig(tmp, metadata=meta, bbox_inches="tight")
+                os.replace(tmp, out)
+            except BaseException:
+                Path(tmp).unlink(missing_ok=True)
+                raise
+        plt.close(fig)
+    finally:
+        saving_cpu += time.process_time() - start
 
 
 def log_binned(x: np.ndarray, v: np.ndarray, stat, per_decade: int = 5, least: int = 1):

@@ -198,8 +198,10 @@ def main(argv=None) -> int:
     # the job's exact CPU, last line of its log: Snakemake's benchmark file samples it (every 30 s after ~15 s of
     # wall time, keeping the last sample) and undercounts long jobs
     own, workers = (resource.getrusage(who) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    figures = sys.modules.get("bounce.figures.common")  # imported by a job that draws (or by the task server)
     print(f"cpu: {own.ru_utime + own.ru_stime:.2f} s in this process{STARTED_BY}, {workers.ru_utime + workers.ru_stime:.2f} "
-          f"s in its worker processes", file=sys.stderr)
+          f"s in its worker processes; {figures.saving_cpu if figures else 0.0:.2f} s of it saving figures",
+          file=sys.stderr)
     return 0
 
 
