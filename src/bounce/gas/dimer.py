@@ -145,16 +145,19 @@ from .queue import add_time, build, time_since, top, update
 # columns of the grain array: local time stamp (double-double), x, x', xi', xi + gamma
 G_TH, G_TL, G_X, G_U, G_A, G_ETA = range(6)
 GRAIN_FIELDS = 6
-# columns of the slot array: the prediction's origin (double-double), its duration, what the search
-# ended at (gap velocity, rounding scale, spring state (eta or s, s') at the contact), and its type
-S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
-# and, for a pending (deferred) search, its inputs: the gap's state at the origin, the classification
-# window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit proves none
-S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(8, 17)
-# and, for a pair's contact found by the closed-form search, the oscillator's parts at its duration (1 - c, t - S,
-# 1 - S', c, S, S'), with which the pair's grains still at the origin are moved (NaN: not kept, recomputed)
-S_PARTS = 17
-SLOT_FIELDS = 23
+# columns of the slot array: the prediction's origin (double-double) and its type (T_*); then, for a searched
+# contact (T_CONTACT, T_STICKY, T_FAILED), its duration, what the search ended at (gap velocity, rounding scale,
+# spring state (eta or s, s') at the contact), and for a pair's contact found by the closed-form search the
+# oscillator's parts at its duration (1 - c, t - S, 1 - S', c, S, S'), with which the pair's grains still at the
+# origin are moved (NaN: not kept, recomputed)
+S_T0H, S_T0L, S_TYPE, S_TAU, S_V, S_SCALE, S_ETA, S_XID = range(8)
+S_PARTS = 8
+# or, in the same columns, for a pending (deferred) search (T_PENDING) its inputs: the gap's state at the origin,
+# the classification window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit
+# proves none.  One row, 14 doubles, per slot: the fields an event reads and writes share lines (23 doubles
+# when the two sets had their own columns)
+S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(3, 12)
+SLOT_FIELDS = 14
 NO_PARTS = (math.nan,) * 6
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
 # stops there); a search not run yet, queued at a lower bound of its contact time (module docstring)
