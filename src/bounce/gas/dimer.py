@@ -73,9 +73,9 @@ that fails it may still keep its masses apart.
 
 Queue: one slot per contact (:mod:`bounce.gas.common`) in the tournament tree of
 :mod:`bounce.gas.queue`; a pair event invalidates three predictions (its own and its two neighbours'),
-a floor event two: O(log n) per event.  A slot keeps what its search ended at: the duration, by which
-grains still at the prediction's origin are advanced (others by the difference of the double-double
-times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
+a floor event two: O(log n) per event.  A slot's row (14 doubles) keeps what its search ended at: the
+duration, by which grains still at the prediction's origin are advanced (others by the difference of the
+double-double times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
 the impact rule uses as the single ball's loop does (always, for one grain); for a pair, the oscillator's
 parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
 the grains' own evaluation would compute, without computing them again.
@@ -593,7 +593,8 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, tree, khi, k
                 update(s, math.inf, 0.0, tree, khi, klo)
             else:
                 t_next = min(khi[sb] if sb != s else math.inf, khi[sa] if sa >= 0 and sa != s else math.inf)
-                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, tree, khi, klo, params, coefs, work, t_next)
+                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, tree,
+                         khi, klo, params, coefs, work, t_next)
             bad = i if _overlap(g, i, gamma) else (j if _overlap(g, j, gamma) else -1)
         clock[K_HI], clock[K_LO] = t_hi, t_lo
         last = s
