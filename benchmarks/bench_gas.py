@@ -13,7 +13,7 @@ What is measured, per N (default 1e3 and 1e5):
     post-event states of the four grains involved: every window, and the searches the lazy engine
     runs (not those of pending slots predicted again before their window starts, :func:`engine_runs`;
     ``searched``: their number per event);
-  - queue: the same sequence of key updates (three per event) replayed on the indexed heap (the second
+  - queue: the same sequence of key updates (three per event) replayed on the queue's tree (the second
     update of a pending slot's resolution is not replayed: it counts as bookkeeping);
   - bookkeeping: the rest (advancing grains, the exchange, records): total - prediction - queue;
 * the rigid engine on the same initial state (grains of length 1) with r = 0.855, the TC model on
@@ -61,7 +61,7 @@ from bounce.gas import GasParameters, GasRun, GasState, RigidParameters, RigidSt
 from bounce.gas.dimer import (
     G_A, G_ETA, G_U, G_X, _contact_lower_bound, _lazy_key, _pair_gap, _pair_limits, _search, grain_at,
 )
-from bounce.gas.queue import add_time, heapify, update
+from bounce.gas.queue import add_time, build, top, update
 
 MU = 0.05
 
@@ -136,14 +136,14 @@ def engine_runs(starts, slots, times):
 
 
 @njit(cache=True)
-def replay(heap, pos, khi, klo, keys_slot, keys_hi, keys_lo, m):
+def replay(tree, khi, klo, keys_slot, keys_hi, keys_lo, m):
     """The queue's work: the key updates of the events in order, plus a look at the top per event."""
-    top = 0
+    tops = 0
     for k in range(m):
-        update(keys_slot[k], keys_hi[k], keys_lo[k], heap, pos, khi, klo)
+        update(keys_slot[k], keys_hi[k], keys_lo[k], tree, khi, klo)
         if k % 3 == 2:
-            top += heap[0]
-    return top
+            tops += top(tree, khi)
+    return tops
 
 
 def cpu(f):
@@ -192,9 +192,9 @@ def bench_dimer(n: int, events: int, repeats: int) -> dict:
                              for _ in range(repeats)) / m * 1e9
     queue = []
     for repeat in range(repeats + 1):  # the first compiles
-        heap, pos, khi, klo = start["heap"].copy(), start["pos"].copy(), start["khi"].copy(), start["klo"].copy()
-        heapify(heap, pos, khi, klo)
-        sec = cpu(lambda: replay(heap, pos, khi, klo, *keys, 3 * m))[0]
+        tree, khi, klo = start["tree"].copy(), start["khi"].copy(), start["klo"].copy()
+        build(tree, khi, klo)
+        sec = cpu(lambda: replay(tree, khi, klo, *keys, 3 * m))[0]
         if repeat:
             queue.append(sec / m * 1e9)
     total = statistics.median(totals)

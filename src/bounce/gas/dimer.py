@@ -71,11 +71,11 @@ event for the grains involved; the run stops (:data:`~bounce.gas.common.STOP_OVE
 grain) the first time it fails, before any pass could happen.  It is a sufficient condition: a grain
 that fails it may still keep its masses apart.
 
-Queue: one slot per contact (:mod:`bounce.gas.common`) in the indexed heap of
+Queue: one slot per contact (:mod:`bounce.gas.common`) in the tournament tree of
 :mod:`bounce.gas.queue`; a pair event invalidates three predictions (its own and its two neighbours'),
-a floor event two: O(log n) per event.  A slot keeps what its search ended at: the duration, by which
-grains still at the prediction's origin are advanced (others by the difference of the double-double
-times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
+a floor event two: O(log n) per event.  A slot's row (14 doubles) keeps what its search ended at: the
+duration, by which grains still at the prediction's origin are advanced (others by the difference of the
+double-double times), the gap's rounding scale, and for the floor the contact's speed and spring state, which
 the impact rule uses as the single ball's loop does (always, for one grain); for a pair, the oscillator's
 parts at that duration, with which its grains still at the origin (as a rule both) are moved: the values
 the grains' own evaluation would compute, without computing them again.
@@ -91,11 +91,11 @@ search's march (:func:`bounce.exact.flight.certified_step` from the origin: the 
 bounds prove the gap positive over it), deferred only when it ends after the earlier of the two adjacent
 slots' keys (after a pair's contact its neighbours are predicted first, so that their new keys are
 known), so that a neighbour's event most likely predicts the slot again before its bound comes (a
-pending slot that reaches the top costs one heap update more than an eager search: deferring every first
+pending slot that reaches the top costs one queue update more than an eager search: deferring every first
 step gained as much at N = 1e3 but nothing measurable at N = 1e5 on the ring of
 benchmarks/bench_gas.py).  The true contact comes after the bound; the computed one may precede it by
 its rounding (a Newton polish from a point whose gap rounded below zero, a tangential minimum within
-rounding).  When a pending slot reaches the top of the heap its deferred search runs (the very search,
+rounding).  When a pending slot reaches the top of the queue its deferred search runs (the very search,
 with the very inputs, an eager prediction would have run at the origin: a pure function of them, so the
 same bits) and the slot is requeued at its true key before anything fires.  Every other key follows the
 pending key, so the true key, if before it, comes first too; the events fired since the origin are those
@@ -140,21 +140,24 @@ from .common import (
     STOP_EVENTS, STOP_FAILED, STOP_OVERLAP, STOP_QUIET, STOP_STICKY, STOP_TIME, above_slot, below_slot,
     slot_grains,
 )
-from .queue import add_time, heapify, time_since, update
+from .queue import add_time, build, time_since, top, update
 
 # columns of the grain array: local time stamp (double-double), x, x', xi', xi + gamma
 G_TH, G_TL, G_X, G_U, G_A, G_ETA = range(6)
 GRAIN_FIELDS = 6
-# columns of the slot array: the prediction's origin (double-double), its duration, what the search
-# ended at (gap velocity, rounding scale, spring state (eta or s, s') at the contact), and its type
-S_T0H, S_T0L, S_TAU, S_V, S_SCALE, S_ETA, S_XID, S_TYPE = range(8)
-# and, for a pending (deferred) search, its inputs: the gap's state at the origin, the classification
-# window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit proves none
-S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(8, 17)
-# and, for a pair's contact found by the closed-form search, the oscillator's parts at its duration (1 - c, t - S,
-# 1 - S', c, S, S'), with which the pair's grains still at the origin are moved (NaN: not kept, recomputed)
-S_PARTS = 17
-SLOT_FIELDS = 23
+# columns of the slot array: the prediction's origin (double-double) and its type (T_*); then, for a searched
+# contact (T_CONTACT, T_STICKY, T_FAILED), its duration, what the search ended at (gap velocity, rounding scale,
+# spring state (eta or s, s') at the contact), and for a pair's contact found by the closed-form search the
+# oscillator's parts at its duration (1 - c, t - S, 1 - S', c, S, S'), with which the pair's grains still at the
+# origin are moved (NaN: not kept, recomputed)
+S_T0H, S_T0L, S_TYPE, S_TAU, S_V, S_SCALE, S_ETA, S_XID = range(8)
+S_PARTS = 8
+# or, in the same columns, for a pending (deferred) search (T_PENDING) its inputs: the gap's state at the origin,
+# the classification window, the rounding scale, the search window (start, limit) and whether a HORIZON at limit
+# proves none.  One row, 14 doubles, per slot: the fields an event reads and writes share lines (23 doubles
+# when the two sets had their own columns)
+S_X0, S_U, S_A, S_S0, S_WINDOW, S_SCALE0, S_START, S_LIMIT, S_PROVES = range(3, 12)
+SLOT_FIELDS = 14
 NO_PARTS = (math.nan,) * 6
 # slot types: a contact; a contact that does not open (the run stops there); a failed search (the run
 # stops there); a search not run yet, queued at a lower bound of its contact time (module docstring)
@@ -291,7 +294,7 @@ def _lazy_key(t_hi, t_start):
 
 
 @njit(cache=True, _nrt=False)
-def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params, coefs, work,
+def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, tree, khi, klo, params, coefs, work,
              t_next):
     """Predict slot s's next contact from (t_hi, t_lo) and queue it (module docstring): a pair with a lower bound
     > 0 of its contact time is queued pending at it (its search deferred, :func:`_resolve_pending`) if the bound is
@@ -325,11 +328,11 @@ def _predict(s, x0, u, a, eta, G, window, scale0, t_hi, t_lo, t_max, sl, heap, p
     else:
         k_hi, k_lo = _run_search(s, x0, u, a, eta, G, window, scale0, t_start, t_limit, proves, t_hi, t_lo, t_max, sl,
                                  params, coefs, work)
-    update(s, k_hi, k_lo, heap, pos, khi, klo)
+    update(s, k_hi, k_lo, tree, khi, klo)
 
 
 @njit(cache=True, _nrt=False)
-def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work, c_hi, c_lo, last):
+def _resolve_pending(s, t_max, sl, tree, khi, klo, params, coefs, work, c_hi, c_lo, last):
     """Run pending slot s's deferred search (from its stored inputs: the search an eager prediction would have
     run, bit for bit) and queue its result.  Returns False if the result precedes the last event fired, at
     (c_hi, c_lo) from slot ``last`` (-1: fired before this call), in the order of the queue (module docstring:
@@ -337,7 +340,7 @@ def _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work, c_h
     k_hi, k_lo = _run_search(s, sl[s, S_X0], sl[s, S_U], sl[s, S_A], sl[s, S_S0], 0.0, sl[s, S_WINDOW],
                              sl[s, S_SCALE0], sl[s, S_START], sl[s, S_LIMIT], sl[s, S_PROVES] != 0.0, sl[s, S_T0H],
                              sl[s, S_T0L], t_max, sl, params, coefs, work)
-    update(s, k_hi, k_lo, heap, pos, khi, klo)
+    update(s, k_hi, k_lo, tree, khi, klo)
     if sl[s, S_TYPE] != T_CONTACT:
         return True  # a failed search (or a sticky start): the run stops at the slot's origin
     return k_hi > c_hi or (k_hi == c_hi and (k_lo > c_lo or (k_lo == c_lo and 0 <= last < s)))
@@ -391,7 +394,7 @@ def _pair_gap(g, i, j, seam, ell, gamma):
 
 
 @njit(cache=True, _nrt=False)
-def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, stale):
+def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, tree, khi, klo, params, coefs, work, stale):
     """Predict slot s from the grains' states (all involved grains at the same time); slot ``stale`` (-1: none)
     is about to be predicted again, its key is not a neighbour's next event (:func:`_predict`'s ``t_next``)."""
     mu = params[P_MU]
@@ -400,7 +403,7 @@ def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi
         x0 = max(g[0, G_X], 0.0)  # below the floor only by rounding: the contact is now
         a, eta = g[0, G_A], g[0, G_ETA]
         window = 8.0 * EPS * (abs(eta) + 2.0 * mu * abs(a) + 2.0 * gamma)
-        _predict(s, x0, g[0, G_U], a, eta, gamma, window, 0.0, g[0, G_TH], g[0, G_TL], t_max, sl, heap, pos, khi, klo,
+        _predict(s, x0, g[0, G_U], a, eta, gamma, window, 0.0, g[0, G_TH], g[0, G_TL], t_max, sl, tree, khi, klo,
                  params, coefs, work, math.inf)
         return
     x0, w, sd, s0, noise = _pair_gap(g, i, j, seam, ell, gamma)
@@ -410,19 +413,19 @@ def _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi
     sb, sa = below_slot(i, n, geometry), above_slot(j, n, geometry)
     t_next = min(khi[sb] if sb != s and sb != stale else math.inf,
                  khi[sa] if sa >= 0 and sa != s and sa != stale else math.inf)
-    _predict(s, x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), g[i, G_TH], g[i, G_TL], t_max, sl, heap, pos, khi, klo, params, coefs,
+    _predict(s, x0, w, sd, s0, 0.0, window, noise / (4.0 * EPS), g[i, G_TH], g[i, G_TL], t_max, sl, tree, khi, klo, params, coefs,
              work, t_next)
 
 
 @njit(cache=True)
-def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, khi, klo):
-    """Predict every slot from the initial state (all grains at t = 0) and build the heap."""
+def dimer_start(geometry, n, gamma, ell, t_max, params, coefs, g, sl, tree, khi, klo):
+    """Predict every slot from the initial state (all grains at t = 0) and build the queue."""
     work = np.empty(MAX_DEGREE + 2)
     khi[:] = math.inf
     klo[:] = 0.0
     for s in range(n):
-        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs, work, -1)
-    heapify(heap, pos, khi, klo)
+        _predict_from_state(s, n, geometry, gamma, ell, t_max, g, sl, tree, khi, klo, params, coefs, work, -1)
+    build(tree, khi, klo)
 
 
 @njit(cache=True, _nrt=False)
@@ -456,9 +459,9 @@ def dimer_snapshot(g, t_hi, t_lo, gamma, params, coefs, out, row):
 
 
 @njit(cache=True)
-def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, khi, klo, ctl, clock,
+def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, tree, khi, klo, ctl, clock,
               max_events, every, rec_t, rec_kind, rec_pair, rec_speed, snap_t, snap_event, snap):
-    """Advance the gas by up to ``max_events`` events from the state in (g, sl, heap, ctl, clock).
+    """Advance the gas by up to ``max_events`` events from the state in (g, sl, tree, ctl, clock).
 
     Records per event (rec_*, from index 0 of this call): the time (the double-double clock rounded),
     the kind (FLOOR, PAIR, GRAZING), the slot (FLOOR_PAIR for the floor) and the approach speed; and
@@ -474,10 +477,10 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
     last = -1  # the slot of the last event fired in this call
     ctl[C_STOP] = STOP_EVENTS
     while rec < max_events:
-        s = heap[0]
+        s = top(tree, khi)
         if sl[s, S_TYPE] == T_PENDING:
             # a deferred search reached the top: run it, requeue, look again (no event fires before it)
-            if not _resolve_pending(s, t_max, sl, heap, pos, khi, klo, params, coefs, work, clock[K_HI], clock[K_LO],
+            if not _resolve_pending(s, t_max, sl, tree, khi, klo, params, coefs, work, clock[K_HI], clock[K_LO],
                                     last):
                 ctl[C_STOP] = STOP_FAILED
                 ctl[C_WHERE] = s
@@ -531,11 +534,11 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             rec_kind[rec] = kind
             rec_pair[rec] = FLOOR_PAIR
             rec_speed[rec] = max(-v, 0.0)
-            _predict(s, 0.0, u1, a1, eta1, gamma, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos, khi, klo, params,
+            _predict(s, 0.0, u1, a1, eta1, gamma, window, 0.0, t_hi, t_lo, t_max, sl, tree, khi, klo, params,
                      coefs, work, math.inf)
             if n > 1:
                 _bring(g, 1, t_hi, t_lo, gamma, params, coefs)
-                _predict_from_state(0, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
+                _predict_from_state(0, n, geometry, gamma, ell, t_max, g, sl, tree, khi, klo, params, coefs,
                                     work, -1)
             bad = 0 if _overlap(g, 0, gamma) else -1
         else:
@@ -579,18 +582,18 @@ def dimer_run(geometry, n, gamma, ell, t_max, params, coefs, g, sl, heap, pos, k
             if sb != s:
                 if not (geometry == COLUMN and i == 0):
                     _bring(g, i - 1 if i > 0 else n - 1, t_hi, t_lo, gamma, params, coefs)
-                _predict_from_state(sb, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
+                _predict_from_state(sb, n, geometry, gamma, ell, t_max, g, sl, tree, khi, klo, params, coefs,
                                     work, s)
             sa = above_slot(j, n, geometry)
             if sa >= 0 and sa != s and sa != sb:
                 _bring(g, j + 1 if j + 1 < n else 0, t_hi, t_lo, gamma, params, coefs)
-                _predict_from_state(sa, n, geometry, gamma, ell, t_max, g, sl, heap, pos, khi, klo, params, coefs,
+                _predict_from_state(sa, n, geometry, gamma, ell, t_max, g, sl, tree, khi, klo, params, coefs,
                                     work, s)
             if window < 0.0:
-                update(s, math.inf, 0.0, heap, pos, khi, klo)
+                update(s, math.inf, 0.0, tree, khi, klo)
             else:
                 t_next = min(khi[sb] if sb != s else math.inf, khi[sa] if sa >= 0 and sa != s else math.inf)
-                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, heap, pos,
+                _predict(s, 0.0, u_new, g[i, G_A] + g[j, G_A], s0, 0.0, window, 0.0, t_hi, t_lo, t_max, sl, tree,
                          khi, klo, params, coefs, work, t_next)
             bad = i if _overlap(g, i, gamma) else (j if _overlap(g, j, gamma) else -1)
         clock[K_HI], clock[K_LO] = t_hi, t_lo

@@ -52,7 +52,7 @@ from .common import (
     C_EVENTS, C_HIGH, C_LOW, C_RUN, C_STOP, C_WHERE, COLUMN, FLOOR, FLOOR_ELASTIC, FLOOR_PAIR, K_HI, K_LO, PAIR,
     PAIR_ELASTIC, STOP_COLLAPSE, STOP_EVENTS, STOP_QUIET, STOP_TIME, above_slot, below_slot, slot_grains,
 )
-from .queue import add_time, heapify, time_since, update
+from .queue import add_time, build, time_since, top, update
 
 # columns of the grain array: local time stamp (double-double), x, x', time of the last collision
 R_TH, R_TL, R_X, R_V, R_LAST = range(5)
@@ -73,7 +73,7 @@ def _advance(g, k, t_hi, t_lo, gamma):
 
 
 @njit(cache=True, _nrt=False)
-def _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo):
+def _predict(s, n, geometry, gamma, ell, size, g, tree, khi, klo):
     """Queue slot s's next contact from the grains' states (all involved grains at the same time)."""
     i, j, seam = slot_grains(s, n, geometry)
     if i < 0:
@@ -92,20 +92,20 @@ def _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo):
         tau = gap / w if w > 0.0 else math.inf
         t_hi, t_lo = g[i, R_TH], g[i, R_TL]
     if tau == math.inf:
-        update(s, math.inf, 0.0, heap, pos, khi, klo)
+        update(s, math.inf, 0.0, tree, khi, klo)
     else:
         k_hi, k_lo = add_time(t_hi, t_lo, tau)
-        update(s, k_hi, k_lo, heap, pos, khi, klo)
+        update(s, k_hi, k_lo, tree, khi, klo)
 
 
 @njit(cache=True)
-def rigid_start(geometry, n, gamma, ell, size, g, heap, pos, khi, klo):
-    """Predict every slot from the initial state (all grains at t = 0) and build the heap."""
+def rigid_start(geometry, n, gamma, ell, size, g, tree, khi, klo):
+    """Predict every slot from the initial state (all grains at t = 0) and build the queue."""
     khi[:] = math.inf
     klo[:] = 0.0
     for s in range(n):
-        _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
-    heapify(heap, pos, khi, klo)
+        _predict(s, n, geometry, gamma, ell, size, g, tree, khi, klo)
+    build(tree, khi, klo)
 
 
 @njit(cache=True)
@@ -119,7 +119,7 @@ def rigid_snapshot(g, t_hi, t_lo, gamma, out, row):
 
 
 @njit(cache=True)
-def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, heap, pos, khi, klo, ctl, clock,
+def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, tree, khi, klo, ctl, clock,
               max_events, every, rec_t, rec_kind, rec_pair, rec_speed, snap_t, snap_event, snap):
     """Advance the rigid gas by up to ``max_events`` events: the contract of
     :func:`bounce.gas.dimer.dimer_run` (records, snapshots, chaining), with the collapse stop."""
@@ -127,7 +127,7 @@ def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, heap, pos, khi, k
     snaps = 0
     ctl[C_STOP] = STOP_EVENTS
     while rec < max_events:
-        s = heap[0]
+        s = top(tree, khi)
         t_hi = khi[s]
         t_lo = klo[s]
         if t_hi == math.inf:
@@ -150,10 +150,10 @@ def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, heap, pos, khi, k
             unresolvable = False
             low = 0
             high = 0
-            _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
+            _predict(s, n, geometry, gamma, ell, size, g, tree, khi, klo)
             if n > 1:
                 _advance(g, 1, t_hi, t_lo, gamma)
-                _predict(0, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
+                _predict(0, n, geometry, gamma, ell, size, g, tree, khi, klo)
         else:
             _advance(g, i, t_hi, t_lo, gamma)
             _advance(g, j, t_hi, t_lo, gamma)
@@ -169,16 +169,16 @@ def rigid_run(geometry, n, gamma, ell, size, r, t_c, t_max, g, heap, pos, khi, k
             speed = max(w, 0.0)
             low = min(i, j)
             high = max(i, j)
-            _predict(s, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
+            _predict(s, n, geometry, gamma, ell, size, g, tree, khi, klo)
             sb = below_slot(i, n, geometry)
             if sb != s:
                 if not (geometry == COLUMN and i == 0):
                     _advance(g, i - 1 if i > 0 else n - 1, t_hi, t_lo, gamma)
-                _predict(sb, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
+                _predict(sb, n, geometry, gamma, ell, size, g, tree, khi, klo)
             sa = above_slot(j, n, geometry)
             if sa >= 0 and sa != s and sa != sb:
                 _advance(g, j + 1 if j + 1 < n else 0, t_hi, t_lo, gamma)
-                _predict(sa, n, geometry, gamma, ell, size, g, heap, pos, khi, klo)
+                _predict(sa, n, geometry, gamma, ell, size, g, tree, khi, klo)
         done = ctl[C_EVENTS]
         # collapse detector (module docstring): does the float64 clock advance over this event?
         if unresolvable or (done > 0 and t == clock[K_HI] + clock[K_LO]):

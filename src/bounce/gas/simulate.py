@@ -89,7 +89,7 @@ class GasRun:
         self.rigid = isinstance(params, RigidParameters)
         n = params.n
         self.geometry = GEOMETRY_NAMES.index(params.geometry)
-        self.heap, self.pos, self.khi, self.klo = empty_queue(n)
+        self.tree, self.khi, self.klo = empty_queue(n)
         self.ctl = np.zeros(CTL_SIZE, dtype=np.int64)
         self.clock = np.zeros(CLOCK_SIZE)
         self.fields = RIGID_FIELDS_NAMES if self.rigid else DIMER_FIELDS
@@ -104,17 +104,17 @@ class GasRun:
         elif self.rigid:
             self.g[:, R_X], self.g[:, R_V] = initial.x, initial.xdot
             self.g[:, R_LAST] = -np.inf
-            rigid_start(self.geometry, n, params.gamma, params.wrap, params.size, self.g, self.heap, self.pos,
+            rigid_start(self.geometry, n, params.gamma, params.wrap, params.size, self.g, self.tree,
                         self.khi, self.klo)
         else:
             x, u, a, eta = initial.deviations(params.gamma)
             self.g[:, G_X], self.g[:, G_U], self.g[:, G_A], self.g[:, G_ETA] = x, u, a, eta
-            dimer_start(self.geometry, n, params.gamma, params.wrap, t_max, *self.osc, self.g, self.sl, self.heap,
-                        self.pos, self.khi, self.klo)
+            dimer_start(self.geometry, n, params.gamma, params.wrap, t_max, *self.osc, self.g, self.sl, self.tree,
+                        self.khi, self.klo)
         self.stop = STOP_NAMES[int(self.ctl[C_STOP])]
 
     def _state_names(self) -> tuple[str, ...]:
-        return ("g", "heap", "pos", "khi", "klo", "ctl", "clock") + (("times",) if self.rigid else ("sl",))
+        return ("g", "tree", "khi", "klo", "ctl", "clock") + (("times",) if self.rigid else ("sl",))
 
     def arrays(self) -> dict[str, np.ndarray]:
         """The engine's whole state (grains, slots, queue, control): copies."""
@@ -152,11 +152,11 @@ class GasRun:
         args = (self.every, rec.t, rec.kind, rec.pair, rec.speed, rec.snap_t, rec.snap_event, rec.snap)
         p = self.params
         if self.rigid:
-            k, snaps = rigid_run(self.geometry, p.n, p.gamma, p.wrap, p.size, p.r, p.t_c, self.t_max, self.g, self.heap,
-                                 self.pos, self.khi, self.klo, self.ctl, self.clock, m, *args)
+            k, snaps = rigid_run(self.geometry, p.n, p.gamma, p.wrap, p.size, p.r, p.t_c, self.t_max, self.g, self.tree,
+                                 self.khi, self.klo, self.ctl, self.clock, m, *args)
         else:
             k, snaps = dimer_run(self.geometry, p.n, p.gamma, p.wrap, self.t_max, *self.osc, self.g, self.sl,
-                                 self.heap, self.pos, self.khi, self.klo, self.ctl, self.clock, m, *args)
+                                 self.tree, self.khi, self.klo, self.ctl, self.clock, m, *args)
         if self.rigid:
             self.times = np.concatenate([self.times, rec.t[:k]])[-self.times.size:]
             if int(self.ctl[C_STOP]) == STOP_COLLAPSE and self.ctl[C_WHERE] >= 0 and self._cooled():
