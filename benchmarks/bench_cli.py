@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import resource
 import shutil
 import statistics
@@ -118,15 +117,11 @@ def job_kind(log: Path, logs: Path) -> str:
     return parts[0] if len(parts) > 1 else log.stem
 
 
-#: a job's last log line (bounce.pipeline.tasks.main): its CPU, how it started, its workers' CPU, the part of its own
-#: CPU spent saving figures (bounce.figures.common.save; absent from the logs of runs before it was reported)
-CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process(.*?), ([\d.]+) s in its worker processes"
-                      r"(?:; ([\d.]+) s of it saving figures)?")
-
-
 def logs_table(logs: Path) -> None:
     """Per job kind: jobs, smallest, median and total CPU of their ``cpu:`` lines (process + workers), and the total
-    spent saving figures (matplotlib: layout, drawing, fonts, PNG and PDF)."""
+    spent saving figures (matplotlib: layout, drawing, fonts, PNG and PDF; NaN for logs written before it was given)."""
+    from bounce.pipeline.tasks import CPU_LINE
+
     cpus, saving, served = {}, {}, 0
     for log in sorted(logs.rglob("*.log")):
         lines = [m for m in map(CPU_LINE.match, log.read_text(errors="replace").splitlines()) if m]

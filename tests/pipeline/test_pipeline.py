@@ -20,7 +20,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from bounce.pipeline import taskserver
+from bounce.pipeline import tasks, taskserver
 from ci_pipeline import CI_CONFIG, ROOT, SNAKEMAKE, env, snakemake
 
 
@@ -158,19 +158,15 @@ def test_every_job_of_a_local_run_is_forked_by_the_task_server(ci_results):
     assert not afresh, afresh
 
 
-_CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process.*, [\d.]+ s in its worker processes; ([\d.]+) s of it saving "
-                       r"figures$")
-
-
 @pytest.mark.slow
 def test_every_job_reports_the_cpu_it_spent_saving_figures(ci_results):
     """Issue 22: a job's last log line also gives the part of its CPU spent saving figures (after the timed studies the
     pipeline's largest cost): within the process's CPU and positive for every figure job, zero for a simulation."""
     by_folder = {}  # logs/<folder>/...: [(cpu, saving)]
     for log in sorted((ci_results / "logs").rglob("*.log")):
-        match = _CPU_LINE.match(log.read_text().splitlines()[-1])
-        assert match, log
-        by_folder.setdefault(log.relative_to(ci_results / "logs").parts[0], []).append(tuple(map(float, match.groups())))
+        match = tasks.CPU_LINE.match(log.read_text().splitlines()[-1])
+        assert match and match[4] is not None, log
+        by_folder.setdefault(log.relative_to(ci_results / "logs").parts[0], []).append((float(match[1]), float(match[4])))
     assert all(0.0 < saving <= cpu for cpu, saving in by_folder["figures"]), by_folder["figures"]
     assert all(saving == 0.0 for _, saving in by_folder["simulate"]), by_folder["simulate"]
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import resource
 import sys
 from pathlib import Path
@@ -164,6 +165,11 @@ def _thumbnails(args) -> None:
 #: how this process started, for its cpu: line: afresh (""), or forked by the run's fork server
 #: (bounce.pipeline.taskserver sets it), whose imports it does not count
 STARTED_BY = ""
+
+#: a job's last log line, as :func:`main` writes it: its own CPU, how it started (:data:`STARTED_BY`), its workers' CPU,
+#: and the part of its own CPU spent saving figures (:func:`bounce.figures.common.save`; absent from older logs)
+CPU_LINE = re.compile(r"cpu: ([\d.]+) s in this process(.*?), ([\d.]+) s in its worker processes"
+                      r"(?:; ([\d.]+) s of it saving figures)?$")
 
 TASKS = {
     "scene": _scene,
